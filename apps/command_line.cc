@@ -1,0 +1,53 @@
+#include "apps/command_line.h"
+
+#include <string>
+
+#include <gflags/gflags.h>
+
+#include "core/input_error.h"
+
+namespace ipstep {
+
+void CheckCommandLine(int argc, char** argv) {
+  for (int a = 1; a < argc; ++a) {
+    std::string arg = argv[a];
+    if (arg == "--") break;
+    if (arg.size() < 2 || arg[0] != '-') {
+      throw InputError("command line", arg, "unexpected argument (flags look like --name=value)");
+    }
+    arg = arg.substr(arg[1] == '-' ? 2 : 1);
+    const size_t eq = arg.find('=');
+    std::string name = arg.substr(0, eq);
+    gflags::CommandLineFlagInfo info;
+    bool negated = false;
+    if (!gflags::GetCommandLineFlagInfo(name.c_str(), &info)) {
+      if (name.rfind("no", 0) == 0 &&
+          gflags::GetCommandLineFlagInfo(name.substr(2).c_str(), &info) && info.type == "bool" &&
+          eq == std::string::npos) {
+        negated = true;
+      } else {
+        throw InputError("flag", "--" + name, "unknown flag (see --help)");
+      }
+    }
+    if (negated) continue;
+    std::string value;
+    if (eq != std::string::npos) {
+      value = arg.substr(eq + 1);
+    } else if (info.type == "bool") {
+      value = "true";
+    } else if (a + 1 < argc) {
+      value = argv[++a];
+    } else {
+      throw InputError("flag", "--" + name, "missing value");
+    }
+    // Validate by parsing into a scratch copy; gflags then parses for real.
+    const std::string saved = info.current_value;
+    if (gflags::SetCommandLineOption(name.c_str(), value.c_str()).empty()) {
+      throw InputError("flag", "--" + name,
+                       "invalid value '" + value + "' for a flag of type " + info.type);
+    }
+    gflags::SetCommandLineOption(name.c_str(), saved.c_str());
+  }
+}
+
+}  // namespace ipstep

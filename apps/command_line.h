@@ -1,0 +1,11 @@
+// Strict command-line checking in front of gflags: an unknown flag or a value
+// gflags cannot parse becomes one InputError naming the flag (exit code 2),
+// instead of gflags' own exit(1).
+#pragma once
+
+namespace ipstep {
+
+// Throws InputError. Call before gflags::ParseCommandLineFlags.
+void CheckCommandLine(int argc, char** argv);
+
+}  // namespace ipstep

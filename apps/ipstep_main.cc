@@ -1,0 +1,140 @@
+// ipstep: runs one scene with one integrator and one optimiser.
+//   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
+// Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed with
+// --on_failure=stop.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include "apps/command_line.h"
+#include "apps/solver_flags.h"
+#include "core/input_error.h"
+#include "io/positions_writer.h"
+#include "io/stats_writer.h"
+#include "problems/scene_loader.h"
+#include "sim/simulation.h"
+
+DEFINE_string(on_failure, "stop",
+              "When a step's optimizer does not converge: stop (exit code 3) or continue");
+DEFINE_string(stats, "", "CSV file: one row per step");
+DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
+DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
+DEFINE_string(frames, "", "Directory for legacy-VTK frames (ParaView)");
+DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames)");
+DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer than 3 s");
+
+namespace ipstep {
+namespace {
+
+int Run() {
+  const SimulationOptions options = SimulationOptionsFromFlags();
+  if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
+    throw InputError("flag", "--on_failure",
+                     "must be 'stop' or 'continue', got '" + FLAGS_on_failure + "'");
+  }
+  if (FLAGS_frame_every < 1) throw InputError("flag", "--frame_every", "must be >= 1");
+  const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
+  Simulation sim(scene, options);
+
+  std::unique_ptr<StatsWriter> stats;
+  std::unique_ptr<IterationLogWriter> iterations;
+  std::unique_ptr<VtkFrameWriter> frames;
+  if (!FLAGS_stats.empty()) stats = std::make_unique<StatsWriter>(FLAGS_stats, "--stats");
+  if (!FLAGS_iterations_log.empty()) {
+    iterations = std::make_unique<IterationLogWriter>(FLAGS_iterations_log, "--iterations_log");
+    sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });
+  }
+  if (!FLAGS_frames.empty()) {
+    frames = std::make_unique<VtkFrameWriter>(FLAGS_frames, sim.scene());
+    frames->Write(sim.state(), 0);
+  }
+
+  std::printf("scene %s (%s): %d nodes, %d free, dimension %d\n", scene.name.c_str(),
+              scene.source.c_str(), sim.state().num_nodes(), sim.state().num_free_nodes(),
+              scene.dimension);
+  std::printf("integrator %s, optimizer %s, dt %g s, %d steps, tolerance %g m/s\n",
+              sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer),
+              sim.time_step(), sim.steps(), options.optimizer.tolerance);
+  std::printf("active effects:\n");
+  if (sim.integrator().has_inertia() && sim.integrator().is_variational()) {
+    std::printf("  inertia: %d terms\n", sim.potential().CountTerms(TermKind::kInertia));
+  }
+  for (const std::string& line : sim.effect_summaries()) std::printf("  %s\n", line.c_str());
+  std::fflush(stdout);
+
+  const EnergyReport e0 = sim.Energies();
+  const auto start = std::chrono::steady_clock::now();
+  auto last_progress = start;
+  int failures = 0;
+  long total_iterations = 0;
+  double solve_seconds = 0.0;
+  bool progress_shown = false;
+  for (int step = 1; step <= sim.steps(); ++step) {
+    if (iterations) iterations->set_step(step);
+    const StepReport r = sim.Step();
+    total_iterations += r.iterations;
+    solve_seconds += r.wall_seconds;
+    if (stats) stats->Write(r);
+    if (frames && step % FLAGS_frame_every == 0) frames->Write(sim.state(), step);
+    VLOG(1) << "step " << step << " t=" << r.time << " iterations=" << r.iterations
+            << " residual=" << r.residual << " E=" << r.energies.total() << " " << r.status;
+    if (!r.converged) {
+      ++failures;
+      std::fprintf(stderr, "%sstep %d (t = %g): %s after %d iterations, residual %.3g m/s\n",
+                   progress_shown ? "\n" : "", step, r.time, r.status.c_str(), r.iterations,
+                   r.residual);
+      progress_shown = false;
+      if (FLAGS_on_failure == "stop") {
+        std::fprintf(stderr, "stopping (--on_failure=stop)\n");
+        if (!FLAGS_positions.empty())
+          WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
+        return kStepFailureExitCode;
+      }
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (FLAGS_progress && std::chrono::duration<double>(now - start).count() > 3.0 &&
+        std::chrono::duration<double>(now - last_progress).count() > 1.0) {
+      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  iterations %d  residual %.2e   ", step,
+                   sim.steps(), r.time, r.iterations, r.residual);
+      last_progress = now;
+      progress_shown = true;
+    }
+  }
+  if (progress_shown) std::fprintf(stderr, "\n");
+  if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
+  const EnergyReport e1 = sim.Energies();
+  const int n = std::max(1, sim.steps());
+  std::printf("done: %d steps, %d failed, %.2f iterations/step, %.3f ms/step\n", sim.steps(),
+              failures, static_cast<double>(total_iterations) / n, 1e3 * solve_seconds / n);
+  std::printf("energy: initial %.10g J, final %.10g J (kinetic %.6g, potential %.6g)\n", e0.total(),
+              e1.total(), e1.kinetic, e1.potential);
+  return 0;
+}
+
+}  // namespace
+}  // namespace ipstep
+
+int main(int argc, char** argv) {
+  gflags::SetUsageMessage(
+      "ipstep --scene=NAME|FILE --integrator=... --optimizer=... [--dt --steps --stats ...]");
+  FLAGS_logtostderr = true;
+  // Quiet by default: -v=1 logs every step, -v=2 every optimizer iteration.
+  try {
+    ipstep::CheckCommandLine(argc, argv);
+  } catch (const ipstep::InputError& e) {
+    std::fprintf(stderr, "ipstep: error: %s\n", e.what());
+    return ipstep::kInputErrorExitCode;
+  }
+  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  google::InitGoogleLogging(argv[0]);
+  try {
+    return ipstep::Run();
+  } catch (const ipstep::InputError& e) {
+    std::fprintf(stderr, "ipstep: error: %s\n", e.what());
+    return ipstep::kInputErrorExitCode;
+  }
+}

@@ -1,0 +1,24 @@
+// The gflags shared by the ipstep programs: scene, integrator, optimiser and
+// every Ceres option an optimiser sets (see README.md "Flags").
+#pragma once
+
+#include <gflags/gflags.h>
+
+#include "problems/scene_loader.h"
+#include "sim/simulation.h"
+
+DECLARE_string(scene);
+DECLARE_string(integrator);
+DECLARE_string(optimizer);
+DECLARE_double(dt);
+DECLARE_int32(steps);
+DECLARE_double(tolerance);
+DECLARE_int32(grid_size);
+
+namespace ipstep {
+
+// Reads and validates the flags. Throws InputError naming the flag.
+SimulationOptions SimulationOptionsFromFlags();
+SceneLoadOptions SceneLoadOptionsFromFlags();
+
+}  // namespace ipstep

@@ -1,0 +1,67 @@
+#include "core/forces.h"
+
+namespace ipstep {
+
+bool IsGravityTerm(const Term& term) { return term.family == "gravity"; }
+
+bool ComputeForces(IncrementalPotential* potential, const State& s, const Eigen::VectorXd& gravity,
+                   Eigen::VectorXd* forces) {
+  StepContext& c = potential->context();
+  // With v(x) = v + 1 * (x' - x), the gradient of R at x' = x is exactly B v.
+  const Eigen::VectorXd saved_x_base = c.x_base, saved_v_base = c.v_base;
+  const double saved_slope = c.velocity_slope;
+  c.x_base = s.x;
+  c.v_base = s.v;
+  c.velocity_slope = 1.0;
+  Eigen::VectorXd gradient(s.num_dofs());
+  double energy = 0.0;
+  const bool ok = potential->EvaluateUnweighted(
+      [](const Term& t) { return t.kind != TermKind::kInertia && !IsGravityTerm(t); }, s.x.data(),
+      &energy, gradient.data());
+  c.x_base = saved_x_base;
+  c.v_base = saved_v_base;
+  c.velocity_slope = saved_slope;
+  if (!ok) return false;
+  const int dim = s.dimension;
+  *forces = -gradient;
+  for (int i = 0; i < s.num_nodes(); ++i) forces->segment(dim * i, dim) += s.mass[i] * gravity;
+  return true;
+}
+
+bool ComputeAccelerations(IncrementalPotential* potential, const State& s,
+                          const Eigen::VectorXd& gravity, Eigen::VectorXd* accelerations) {
+  Eigen::VectorXd f;
+  if (!ComputeForces(potential, s, gravity, &f)) return false;
+  const int dim = s.dimension;
+  accelerations->setZero(s.num_dofs());
+  for (int i = 0; i < s.num_nodes(); ++i) {
+    if (s.is_free(i)) accelerations->segment(dim * i, dim) = f.segment(dim * i, dim) / s.mass[i];
+  }
+  return true;
+}
+
+bool ComputeEnergies(const IncrementalPotential& potential, const State& s,
+                     const Eigen::VectorXd& gravity, bool has_inertia, EnergyReport* report) {
+  double u = 0.0;
+  if (!potential.EvaluateUnweighted(
+          [](const Term& t) { return t.kind == TermKind::kPotential && !IsGravityTerm(t); },
+          s.x.data(), &u, nullptr)) {
+    return false;
+  }
+  const int dim = s.dimension;
+  for (int i = 0; i < s.num_nodes(); ++i) {
+    u -= s.mass[i] * gravity.dot(s.x.segment(dim * i, dim));
+  }
+  report->potential = u;
+  report->kinetic = has_inertia ? s.KineticEnergy() : 0.0;
+  return true;
+}
+
+bool ComputeDissipation(const IncrementalPotential& potential, const Eigen::VectorXd& x,
+                        double* dissipation) {
+  return potential.EvaluateUnweighted(
+      [](const Term& t) { return t.kind == TermKind::kDissipation; }, x.data(), dissipation,
+      nullptr);
+}
+
+}  // namespace ipstep

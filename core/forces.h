@@ -1,0 +1,40 @@
+// Forces and energies from the same energy terms as the incremental potential.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "core/incremental_potential.h"
+#include "core/state.h"
+
+namespace ipstep {
+
+// True for terms of the family "gravity" (the quasi-static linear potential,
+// whose value carries an offset; reports use -m g.x instead).
+bool IsGravityTerm(const Term& term);
+
+// f(x, v) = -grad U(x) - B v + M g on every node (zero rows for nodes without
+// terms). Temporarily points the context's velocity map at (x, v); restores it.
+// Returns false if a term cannot be evaluated at x.
+bool ComputeForces(IncrementalPotential* potential, const State& state,
+                   const Eigen::VectorXd& gravity, Eigen::VectorXd* forces);
+
+// Accelerations M^-1 f(x, v) for free nodes, zero for constrained ones.
+bool ComputeAccelerations(IncrementalPotential* potential, const State& state,
+                          const Eigen::VectorXd& gravity, Eigen::VectorXd* accelerations);
+
+struct EnergyReport {
+  double kinetic = 0.0;
+  double potential = 0.0;  // U(x) - sum m g.x
+  double total() const { return kinetic + potential; }
+};
+
+// Kinetic energy (0 when `has_inertia` is false) and potential energy.
+bool ComputeEnergies(const IncrementalPotential& potential, const State& state,
+                     const Eigen::VectorXd& gravity, bool has_inertia, EnergyReport* report);
+
+// Rayleigh dissipation function R(v) at the context's current velocity map,
+// evaluated at positions x (unweighted).
+bool ComputeDissipation(const IncrementalPotential& potential, const Eigen::VectorXd& x,
+                        double* dissipation);
+
+}  // namespace ipstep

@@ -1,0 +1,40 @@
+// The simulated state: positions, velocities, accelerations (used by Newmark),
+// masses and boundary conditions of every node, in 2D or 3D.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace ipstep {
+
+enum class NodeKind {
+  kFree,    // unknown of the step
+  kPinned,  // held at its initial position
+  kMoving,  // moved along a prescribed constant velocity (moving Dirichlet)
+};
+
+struct State {
+  int dimension = 2;
+  double time = 0.0;
+  // Flattened per node: x[dimension * i + k].
+  Eigen::VectorXd x;
+  Eigen::VectorXd v;
+  Eigen::VectorXd a;     // accelerations at `time` (Newmark)
+  Eigen::VectorXd mass;  // per node
+  std::vector<NodeKind> kind;
+  Eigen::VectorXd x0;                   // initial positions (pinned and moving nodes follow them)
+  Eigen::VectorXd prescribed_velocity;  // per node, zero unless kMoving
+
+  int num_nodes() const { return static_cast<int>(mass.size()); }
+  int num_dofs() const { return static_cast<int>(x.size()); }
+  bool is_free(int node) const { return kind[node] == NodeKind::kFree; }
+  int num_free_nodes() const;
+
+  // Position of a constrained node at time t (x0 + prescribed_velocity * t).
+  void PrescribedPositions(double t, Eigen::VectorXd* positions) const;
+  // Kinetic energy 1/2 sum m_i |v_i|^2 over all nodes.
+  double KineticEnergy() const;
+};
+
+}  // namespace ipstep

@@ -1,0 +1,65 @@
+// One energy term of the incremental potential: a Ceres cost function over the
+// positions of a few nodes (one parameter block of `dimension` doubles per node),
+// optionally with a loss function, and the family it belongs to.
+//
+// A term's cost function computes the UNWEIGHTED residual r of its energy,
+// e = 1/2 rho(|r|^2) (rho = identity without a loss). The step weight of the
+// family (StepContext::inertia_weight, potential_weight, dissipation_weight) is
+// applied on top: by WeightedCostFunction / WeightedLoss when the term is given to
+// a ceres::Problem, and directly by the evaluator (core/potential_evaluator.h).
+// So one definition serves every optimiser.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+
+#include "core/step_context.h"
+
+namespace ipstep {
+
+enum class TermKind {
+  kInertia,      // 1/2 |x - x_tilde|_M^2, weight w_I
+  kPotential,    // U(x), weight w_U (springs, external loads, barriers, ...)
+  kDissipation,  // R(v(x)), weight w_R
+};
+
+const char* TermKindName(TermKind kind);
+double TermWeight(TermKind kind, const StepContext& context);
+
+struct Term {
+  TermKind kind = TermKind::kPotential;
+  std::string family;                         // effect that built it, e.g. "springs"
+  std::vector<int> nodes;                     // one parameter block per node
+  std::unique_ptr<ceres::CostFunction> cost;  // unweighted residual
+  std::unique_ptr<ceres::LossFunction> loss;  // may be null
+};
+
+// Decorator that multiplies residuals and Jacobians by sqrt(weight), the weight
+// read through a pointer at every evaluation.
+class WeightedCostFunction : public ceres::CostFunction {
+ public:
+  WeightedCostFunction(const ceres::CostFunction* inner, const double* weight);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  const ceres::CostFunction* inner_;
+  const double* weight_;
+};
+
+// Decorator for terms with a loss: rho_w(s) = weight * rho(s).
+class WeightedLoss : public ceres::LossFunction {
+ public:
+  WeightedLoss(const ceres::LossFunction* inner, const double* weight);
+  void Evaluate(double s, double rho[3]) const override;
+
+ private:
+  const ceres::LossFunction* inner_;
+  const double* weight_;
+};
+
+}  // namespace ipstep

@@ -1,0 +1,45 @@
+#include "energies/effect_registry.h"
+
+#include <stdexcept>
+
+namespace ipstep {
+
+EffectRegistry& EffectRegistry::Global() {
+  static EffectRegistry* registry = [] {
+    auto* r = new EffectRegistry;
+    RegisterBuiltinEffects(r);
+    return r;
+  }();
+  return *registry;
+}
+
+void EffectRegistry::Register(const std::string& name, const std::string& description,
+                              EffectFactory factory) {
+  if (name.empty()) throw std::invalid_argument("effect name must not be empty");
+  if (effects_.count(name)) throw std::invalid_argument("effect '" + name + "' already registered");
+  effects_[name] = EffectInfo{name, description, std::move(factory)};
+}
+
+bool EffectRegistry::Has(const std::string& name) const { return effects_.count(name) > 0; }
+
+const EffectInfo& EffectRegistry::Get(const std::string& name) const {
+  auto it = effects_.find(name);
+  if (it == effects_.end()) throw std::invalid_argument("unknown effect '" + name + "'");
+  return it->second;
+}
+
+std::set<std::string> EffectRegistry::Names() const {
+  std::set<std::string> names;
+  for (const auto& [name, info] : effects_) names.insert(name);
+  return names;
+}
+
+std::set<std::string> EffectRegistry::UserNames() const {
+  std::set<std::string> names;
+  for (const auto& [name, info] : effects_) {
+    if (!builtin_.count(name)) names.insert(name);
+  }
+  return names;
+}
+
+}  // namespace ipstep

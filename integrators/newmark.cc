@@ -1,0 +1,37 @@
+#include "integrators/newmark.h"
+
+namespace ipstep {
+
+void Newmark::SetWeights(double h, StepContext* c) const {
+  c->time_step = h;
+  c->inertia_weight = 1.0;
+  c->potential_weight = beta_ * h * h;
+  c->dissipation_weight = beta_ * beta_ * h * h * h / gamma_;
+  c->velocity_slope = gamma_ / (beta_ * h);
+}
+
+Eigen::VectorXd Newmark::ExplicitPart(const State& s, double h) const {
+  return s.x + h * s.v + h * h * (0.5 - beta_) * s.a;
+}
+
+void Newmark::Predict(const State& s, const Eigen::VectorXd& gravity, double h, StepContext* c,
+                      Eigen::VectorXd* guess) const {
+  const int dim = s.dimension;
+  c->x_start = s.x;
+  c->x_base = ExplicitPart(s, h);
+  c->v_base = s.v + h * (1.0 - gamma_) * s.a;
+  for (int i = 0; i < s.num_nodes(); ++i) {
+    c->x_tilde.segment(dim * i, dim) = c->x_base.segment(dim * i, dim) + beta_ * h * h * gravity;
+  }
+  // Guess: constant acceleration over the step.
+  *guess = s.x + h * s.v + 0.5 * h * h * s.a;
+}
+
+void Newmark::Update(const Eigen::VectorXd& x_next, double h, State* s) const {
+  const Eigen::VectorXd a_next = (x_next - ExplicitPart(*s, h)) / (beta_ * h * h);
+  s->v += h * ((1.0 - gamma_) * s->a + gamma_ * a_next);
+  s->a = a_next;
+  s->x = x_next;
+}
+
+}  // namespace ipstep

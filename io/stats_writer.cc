@@ -1,0 +1,42 @@
+#include "io/stats_writer.h"
+
+#include <iomanip>
+
+#include "core/input_error.h"
+
+namespace ipstep {
+namespace {
+
+std::ofstream OpenForWriting(const std::string& path, const std::string& flag) {
+  std::ofstream out(path);
+  if (!out) throw InputError("flag", flag, "cannot write '" + path + "'");
+  out << std::setprecision(17);
+  return out;
+}
+
+}  // namespace
+
+StatsWriter::StatsWriter(const std::string& path, const std::string& flag)
+    : out_(OpenForWriting(path, flag)) {
+  out_ << "step,time,iterations,evaluations,converged,status,wall_seconds,kinetic_energy,"
+          "potential_energy,total_energy,residual\n";
+}
+
+void StatsWriter::Write(const StepReport& r) {
+  out_ << r.step << ',' << r.time << ',' << r.iterations << ',' << r.evaluations << ','
+       << (r.converged ? 1 : 0) << ",\"" << r.status << "\"," << r.wall_seconds << ','
+       << r.energies.kinetic << ',' << r.energies.potential << ',' << r.energies.total() << ','
+       << r.residual << '\n';
+}
+
+IterationLogWriter::IterationLogWriter(const std::string& path, const std::string& flag)
+    : out_(OpenForWriting(path, flag)) {
+  out_ << "step,iteration,energy,gradient_norm,step_size,seconds,residual\n";
+}
+
+void IterationLogWriter::Write(const IterationRecord& r) {
+  out_ << step_ << ',' << r.iteration << ',' << r.energy << ',' << r.gradient_norm << ','
+       << r.step_size << ',' << r.seconds << ',' << r.residual << '\n';
+}
+
+}  // namespace ipstep

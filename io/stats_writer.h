@@ -1,0 +1,34 @@
+// CSV outputs of a run: one row per step (--stats) and one row per optimiser
+// iteration (--iterations_log).
+#pragma once
+
+#include <fstream>
+#include <string>
+
+#include "sim/simulation.h"
+#include "solver/step_solver.h"
+
+namespace ipstep {
+
+class StatsWriter {
+ public:
+  // Throws InputError naming `flag` if the file cannot be written.
+  StatsWriter(const std::string& path, const std::string& flag);
+  void Write(const StepReport& report);
+
+ private:
+  std::ofstream out_;
+};
+
+class IterationLogWriter {
+ public:
+  IterationLogWriter(const std::string& path, const std::string& flag);
+  void set_step(int step) { step_ = step; }
+  void Write(const IterationRecord& record);
+
+ private:
+  std::ofstream out_;
+  int step_ = 0;
+};
+
+}  // namespace ipstep

@@ -1,0 +1,76 @@
+// A scene: the nodes, their masses and initial state, the springs, the
+// boundary conditions and the list of effects (energy families) to build.
+// Scenes are plain data; problems/scene_loader.h reads them from JSON.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace ipstep {
+
+enum class SpringModel {
+  kHookean,        // k/2 (|d| - L)^2
+  kSquaredStrain,  // k/2 L^2 (|d|^2/L^2 - 1)^2
+  kQuartic,        // c (|d| - L)^4   (c stored in `stiffness`)
+};
+
+const char* SpringModelName(SpringModel model);
+
+struct Spring {
+  int i = 0;
+  int j = 0;
+  SpringModel model = SpringModel::kHookean;
+  double stiffness = 0.0;    // k [N/m] (Hookean, squared strain) or c [N/m^3] (quartic)
+  double rest_length = 0.0;  // L [m]; the loader fills in the initial length when omitted
+};
+
+// A node moved along a prescribed constant velocity (moving Dirichlet condition):
+// x(t) = x(0) + velocity * t.
+struct MovingNode {
+  int node = 0;
+  std::vector<double> velocity;  // size dimension [m/s]
+};
+
+// Rayleigh dissipation R = 1/2 v^T B v with
+// B = mass_proportional * M + stiffness_proportional * K_springs (on spring length rates).
+struct Damping {
+  double mass_proportional = 0.0;       // alpha [1/s]
+  double stiffness_proportional = 0.0;  // beta [s]
+};
+
+struct Scene {
+  std::string name;    // scene name (file stem or built-in name)
+  std::string source;  // file path it was read from, for error messages
+  int dimension = 2;   // 2 or 3
+
+  // Per node, flattened: positions[dimension * i + k].
+  std::vector<double> positions;   // [m]
+  std::vector<double> velocities;  // [m/s], same size as positions
+  std::vector<double> masses;      // [kg], one per node, > 0
+
+  std::vector<Spring> springs;
+  std::vector<int> pinned;  // node indices held fixed
+  std::vector<MovingNode> moving;
+
+  std::vector<double> gravity;  // size dimension [m/s^2]; empty when unset
+  Damping damping;
+
+  // Effects the scene calls for, in file order: "gravity", "springs", "damping",
+  // or the name of a user-registered effect. Only these energies are built.
+  std::vector<std::string> effects;
+  // Parameters of user-registered effects: top-level object whose key is the
+  // effect's name.
+  std::map<std::string, nlohmann::json> effect_parameters;
+
+  // Run defaults a scene may carry (flags override them).
+  double time_step = 0.01;  // [s]
+  int steps = 100;
+
+  int num_nodes() const { return static_cast<int>(masses.size()); }
+  bool HasEffect(const std::string& effect) const;
+};
+
+}  // namespace ipstep

@@ -1,0 +1,153 @@
+#include "sim/simulation.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/input_error.h"
+#include "energies/effect_registry.h"
+#include "energies/inertia.h"
+#include "energies/term_builder.h"
+
+namespace ipstep {
+
+Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
+    : scene_(scene), options_(options) {
+  time_step_ = options.time_step > 0.0 ? options.time_step : scene.time_step;
+  steps_ = options.steps >= 0 ? options.steps : scene.steps;
+  if (!std::isfinite(time_step_) || time_step_ <= 0.0) {
+    throw InputError("flag", "--dt", "must be a finite number > 0");
+  }
+  integrator_ = MakeIntegrator(options.integrator);
+  BuildState();
+  BuildPotential();
+  if (integrator_->is_variational()) {
+    solver_ = MakeStepSolver(potential_.get(), &state_, options.optimizer);
+  } else {
+    ValidateOptimizerOptions(options.optimizer);
+  }
+  if (integrator_->needs_initial_acceleration()) {
+    if (!ComputeAccelerations(potential_.get(), state_, gravity_, &state_.a)) {
+      throw InputError(scene_.source, "positions",
+                       "the energies cannot be evaluated at the initial state");
+    }
+  }
+}
+
+void Simulation::BuildState() {
+  const int dim = scene_.dimension;
+  const int n = scene_.num_nodes();
+  state_.dimension = dim;
+  state_.x = Eigen::Map<const Eigen::VectorXd>(scene_.positions.data(), dim * n);
+  state_.v = Eigen::Map<const Eigen::VectorXd>(scene_.velocities.data(), dim * n);
+  state_.a = Eigen::VectorXd::Zero(dim * n);
+  state_.mass = Eigen::Map<const Eigen::VectorXd>(scene_.masses.data(), n);
+  state_.x0 = state_.x;
+  state_.prescribed_velocity = Eigen::VectorXd::Zero(dim * n);
+  state_.kind.assign(n, NodeKind::kFree);
+  for (int i : scene_.pinned) state_.kind[i] = NodeKind::kPinned;
+  for (const MovingNode& m : scene_.moving) {
+    state_.kind[m.node] = NodeKind::kMoving;
+    for (int k = 0; k < dim; ++k) state_.prescribed_velocity[dim * m.node + k] = m.velocity[k];
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!state_.is_free(i))
+      state_.v.segment(dim * i, dim) = state_.prescribed_velocity.segment(dim * i, dim);
+  }
+  gravity_ = Eigen::VectorXd::Zero(dim);
+  if (scene_.HasEffect("gravity")) {
+    gravity_ = Eigen::Map<const Eigen::VectorXd>(scene_.gravity.data(), dim);
+  }
+}
+
+void Simulation::BuildPotential() {
+  potential_ = std::make_unique<IncrementalPotential>(state_.dimension, state_.num_nodes());
+  integrator_->SetWeights(time_step_, &potential_->context());
+  TermBuilder builder(scene_, state_, integrator_->has_inertia(), potential_.get());
+  if (integrator_->has_inertia() && integrator_->is_variational()) {
+    builder.set_family("inertia");
+    for (int i = 0; i < state_.num_nodes(); ++i) {
+      if (!state_.is_free(i)) continue;
+      builder.AddAutoDiff<InertiaResidual, kOneResidualPerCoordinate, 1>(
+          TermKind::kInertia, {i}, builder.context(), i, state_.mass[i]);
+    }
+  }
+  const EffectRegistry& registry = EffectRegistry::Global();
+  for (const std::string& effect : scene_.effects) {
+    if (!registry.Has(effect)) {
+      throw InputError(scene_.source, "effects", "effect '" + effect + "' is not registered");
+    }
+    auto it = scene_.effect_parameters.find(effect);
+    const nlohmann::json parameters =
+        it == scene_.effect_parameters.end() ? nlohmann::json() : it->second;
+    builder.set_family(effect);
+    effect_summaries_.push_back(registry.Get(effect).factory(builder, parameters));
+  }
+}
+
+void Simulation::ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const {
+  state_.PrescribedPositions(t, x);
+}
+
+void Simulation::set_iteration_sink(IterationSink sink) {
+  if (solver_) solver_->set_iteration_sink(std::move(sink));
+}
+
+EnergyReport Simulation::Energies() const {
+  EnergyReport report;
+  if (!ComputeEnergies(*potential_, state_, gravity_, integrator_->has_inertia(), &report)) {
+    report.kinetic = report.potential = std::nan("");
+  }
+  return report;
+}
+
+StepReport Simulation::Step() {
+  const auto start = std::chrono::steady_clock::now();
+  const double h = time_step_;
+  const double t_next = state_.time + h;
+  const int dim = state_.dimension;
+  StepReport report;
+  report.step = ++steps_taken_;
+  Eigen::VectorXd x;
+  integrator_->Predict(state_, gravity_, h, &potential_->context(), &x);
+  if (integrator_->is_variational()) {
+    ApplyBoundaryConditions(t_next, &x);
+    if (!x.allFinite()) {
+      report.converged = false;
+      report.status = "non-finite initial guess";
+    } else {
+      const StepSolveResult solve = solver_->Solve(&x);
+      report.converged = solve.converged;
+      report.status = solve.status;
+      report.iterations = solve.iterations;
+      report.evaluations = solve.evaluations;
+      report.residual = solve.residual;
+    }
+    integrator_->Update(x, h, &state_);
+  } else {
+    Eigen::VectorXd forces;
+    if (!ComputeForces(potential_.get(), state_, gravity_, &forces)) {
+      report.converged = false;
+      report.status = "forces cannot be evaluated";
+    } else {
+      integrator_->Advance(forces, h, &state_);
+    }
+  }
+  ApplyBoundaryConditions(t_next, &state_.x);
+  for (int i = 0; i < state_.num_nodes(); ++i) {
+    if (state_.is_free(i)) continue;
+    state_.v.segment(dim * i, dim) = state_.prescribed_velocity.segment(dim * i, dim);
+    state_.a.segment(dim * i, dim).setZero();
+  }
+  state_.time = t_next;
+  if (report.converged && !(state_.x.allFinite() && state_.v.allFinite())) {
+    report.converged = false;
+    report.status = "non-finite state";
+  }
+  report.time = state_.time;
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.energies = Energies();
+  return report;
+}
+
+}  // namespace ipstep

@@ -1,0 +1,78 @@
+// A simulation run: the state built from a scene, the incremental potential with
+// exactly the effects the scene lists, an integrator and (for variational
+// integrators) a step solver. Everything is built once; Step() advances by h.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/forces.h"
+#include "core/incremental_potential.h"
+#include "core/state.h"
+#include "integrators/integrator.h"
+#include "problems/scene.h"
+#include "solver/step_solver.h"
+
+namespace ipstep {
+
+struct SimulationOptions {
+  IntegratorOptions integrator;
+  OptimizerOptions optimizer;
+  double time_step = 0.0;  // [s]; 0: the scene's time_step
+  int steps = -1;          // -1: the scene's steps
+};
+
+struct StepReport {
+  int step = 0;
+  double time = 0.0;
+  bool converged = true;
+  std::string status = "converged";
+  int iterations = 0;
+  int evaluations = 0;
+  double wall_seconds = 0.0;
+  double residual = 0.0;  // stopping measure [m/s]
+  EnergyReport energies;
+};
+
+class Simulation {
+ public:
+  // Throws InputError for invalid options or scene/effect parameters.
+  Simulation(const Scene& scene, const SimulationOptions& options);
+  Simulation(const Simulation&) = delete;  // terms and solvers point into it
+  Simulation& operator=(const Simulation&) = delete;
+
+  StepReport Step();
+
+  const Scene& scene() const { return scene_; }
+  const State& state() const { return state_; }
+  const Integrator& integrator() const { return *integrator_; }
+  const IncrementalPotential& potential() const { return *potential_; }
+  double time_step() const { return time_step_; }
+  int steps() const { return steps_; }
+  int steps_taken() const { return steps_taken_; }
+  const Eigen::VectorXd& gravity() const { return gravity_; }
+  // One line per active effect (what was built), in scene order.
+  const std::vector<std::string>& effect_summaries() const { return effect_summaries_; }
+  EnergyReport Energies() const;
+  void set_iteration_sink(IterationSink sink);
+
+ private:
+  void BuildState();
+  void BuildPotential();
+  void ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const;
+
+  Scene scene_;
+  SimulationOptions options_;
+  double time_step_;
+  int steps_;
+  int steps_taken_ = 0;
+  State state_;
+  Eigen::VectorXd gravity_;
+  std::unique_ptr<Integrator> integrator_;
+  std::unique_ptr<IncrementalPotential> potential_;
+  std::unique_ptr<StepSolver> solver_;
+  std::vector<std::string> effect_summaries_;
+};
+
+}  // namespace ipstep

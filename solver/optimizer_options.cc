@@ -1,0 +1,187 @@
+#include "solver/optimizer_options.h"
+
+#include <cmath>
+
+#include "core/input_error.h"
+
+namespace ipstep {
+namespace {
+
+constexpr struct {
+  Optimizer optimizer;
+  const char* name;
+} kNames[] = {
+    {Optimizer::kNewton, "newton"}, {Optimizer::kDogleg, "dogleg"},
+    {Optimizer::kLbfgs, "lbfgs"},   {Optimizer::kBfgs, "bfgs"},
+    {Optimizer::kNcg, "ncg"},       {Optimizer::kGradientDescent, "gradient_descent"},
+};
+
+int DefaultMaxIterations(Optimizer o) {
+  switch (o) {
+    case Optimizer::kNewton:
+    case Optimizer::kDogleg:
+      return 100;
+    case Optimizer::kLbfgs:
+    case Optimizer::kBfgs:
+      return 5000;
+    case Optimizer::kNcg:
+      return 20000;
+    case Optimizer::kGradientDescent:
+      return 50000;
+  }
+  return 100;
+}
+
+// Ceres's own convergence tests are off or at round-off: only genuine stalls
+// (a step of relative size 1e-16) end a solve early; convergence is decided by
+// the stopping rule (callback). Ceres's function tolerance in particular would
+// stop Newton early: the cost decrease is quadratic in the gradient.
+template <class CeresOptions>
+void SetCommonOptions(const OptimizerOptions& o, CeresOptions* c) {
+  c->max_num_iterations =
+      o.max_iterations > 0 ? o.max_iterations : DefaultMaxIterations(o.optimizer);
+  c->max_solver_time_in_seconds = o.time_limit > 0.0 ? o.time_limit : 1e9;
+  c->function_tolerance = 0.0;
+  c->gradient_tolerance = 0.0;
+  c->parameter_tolerance = 1e-16;
+  c->logging_type = ceres::SILENT;
+  c->minimizer_progress_to_stdout = false;
+  c->update_state_every_iteration = true;
+}
+
+template <class CeresOptions>
+void SetLineSearchOptions(const OptimizerOptions& o, CeresOptions* c) {
+  c->line_search_type = ceres::WOLFE;
+  c->use_approximate_eigenvalue_bfgs_scaling = true;
+  switch (o.optimizer) {
+    case Optimizer::kLbfgs:
+      c->line_search_direction_type = ceres::LBFGS;
+      break;
+    case Optimizer::kBfgs:
+      c->line_search_direction_type = ceres::BFGS;
+      break;
+    case Optimizer::kNcg:
+      c->line_search_direction_type = ceres::NONLINEAR_CONJUGATE_GRADIENT;
+      c->nonlinear_conjugate_gradient_type = ceres::POLAK_RIBIERE;
+      break;
+    default:
+      c->line_search_direction_type = ceres::STEEPEST_DESCENT;
+      break;
+  }
+  if (!o.line_search.empty() &&
+      !ceres::StringToLineSearchType(o.line_search, &c->line_search_type)) {
+    throw InputError("flag", "--line_search",
+                     "unknown line search '" + o.line_search + "' (WOLFE or ARMIJO)");
+  }
+  if (!o.nonlinear_cg.empty() && !ceres::StringToNonlinearConjugateGradientType(
+                                     o.nonlinear_cg, &c->nonlinear_conjugate_gradient_type)) {
+    throw InputError("flag", "--nonlinear_cg",
+                     "unknown type '" + o.nonlinear_cg +
+                         "' (FLETCHER_REEVES, POLAK_RIBIERE or HESTENES_STIFEL)");
+  }
+  if (o.lbfgs_rank > 0) c->max_lbfgs_rank = o.lbfgs_rank;
+}
+
+}  // namespace
+
+const char* OptimizerName(Optimizer optimizer) {
+  for (const auto& entry : kNames) {
+    if (entry.optimizer == optimizer) return entry.name;
+  }
+  return "unknown";
+}
+
+const char* OptimizerNames() { return "newton, dogleg, lbfgs, bfgs, ncg, gradient_descent"; }
+
+Optimizer ParseOptimizer(const std::string& name) {
+  for (const auto& entry : kNames) {
+    if (name == entry.name) return entry.optimizer;
+  }
+  throw InputError("flag", "--optimizer",
+                   "unknown optimizer '" + name + "' (choose one of " + OptimizerNames() + ")");
+}
+
+bool IsTrustRegion(Optimizer optimizer) {
+  return optimizer == Optimizer::kNewton || optimizer == Optimizer::kDogleg;
+}
+
+void ValidateOptimizerOptions(const OptimizerOptions& o) {
+  if (!std::isfinite(o.tolerance) || o.tolerance <= 0.0) {
+    throw InputError("flag", "--tolerance",
+                     "must be a finite number > 0, got " + std::to_string(o.tolerance));
+  }
+  if (o.max_iterations < 0) {
+    throw InputError("flag", "--max_iterations", "must be >= 0 (0: the optimizer's default)");
+  }
+  if (!std::isfinite(o.time_limit) || o.time_limit < 0.0) {
+    throw InputError("flag", "--time_limit", "must be >= 0 seconds (0: none)");
+  }
+  if (o.num_threads < 1) throw InputError("flag", "--num_threads", "must be >= 1");
+  if (!std::isfinite(o.initial_trust_region_radius) || o.initial_trust_region_radius < 0.0) {
+    throw InputError("flag", "--trust_region_radius", "must be > 0 (0: the default)");
+  }
+  if (o.lbfgs_rank < 0) throw InputError("flag", "--lbfgs_rank", "must be >= 1 (0: default 20)");
+}
+
+ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
+  ValidateOptimizerOptions(o);
+  if (!IsTrustRegion(o.optimizer)) {
+    throw InputError("flag", "--optimizer",
+                     std::string(OptimizerName(o.optimizer)) + " is not a trust-region optimizer");
+  }
+  ceres::Solver::Options c;
+  SetCommonOptions(o, &c);
+  c.minimizer_type = ceres::TRUST_REGION;
+  c.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  c.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
+  c.num_threads = o.num_threads;
+  if (o.optimizer == Optimizer::kNewton) {
+    c.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    c.initial_trust_region_radius = 1e16;  // Gauss-Newton steps, damped only after a rejection
+  } else {
+    c.trust_region_strategy_type = ceres::DOGLEG;
+    c.dogleg_type = ceres::TRADITIONAL_DOGLEG;
+  }
+  if (o.initial_trust_region_radius > 0.0) {
+    c.initial_trust_region_radius = o.initial_trust_region_radius;
+    c.max_trust_region_radius = std::max(c.max_trust_region_radius, o.initial_trust_region_radius);
+  }
+  if (!o.linear_solver.empty() &&
+      !ceres::StringToLinearSolverType(o.linear_solver, &c.linear_solver_type)) {
+    throw InputError("flag", "--linear_solver",
+                     "unknown linear solver '" + o.linear_solver +
+                         "' (e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, DENSE_NORMAL_CHOLESKY, CGNR)");
+  }
+  if (!o.sparse_library.empty() && !ceres::StringToSparseLinearAlgebraLibraryType(
+                                       o.sparse_library, &c.sparse_linear_algebra_library_type)) {
+    throw InputError("flag", "--sparse_library",
+                     "unknown sparse library '" + o.sparse_library +
+                         "' (SUITE_SPARSE, CX_SPARSE or EIGEN_SPARSE)");
+  }
+  std::string error;
+  if (!c.IsValid(&error)) {
+    throw InputError("flag", "--optimizer=" + std::string(OptimizerName(o.optimizer)),
+                     "invalid Ceres options: " + error);
+  }
+  return c;
+}
+
+ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& o) {
+  ValidateOptimizerOptions(o);
+  if (IsTrustRegion(o.optimizer)) {
+    throw InputError("flag", "--optimizer",
+                     std::string(OptimizerName(o.optimizer)) + " is not a line-search optimizer");
+  }
+  ceres::GradientProblemSolver::Options c;
+  SetCommonOptions(o, &c);
+  SetLineSearchOptions(o, &c);
+  std::string error;
+  if (!c.IsValid(&error)) {
+    throw InputError(
+        "flag", "--line_search",
+        "invalid Ceres options for " + std::string(OptimizerName(o.optimizer)) + ": " + error);
+  }
+  return c;
+}
+
+}  // namespace ipstep

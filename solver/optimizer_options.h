@@ -1,0 +1,65 @@
+// Optimiser names and the Ceres solver options each one sets. Every option can
+// be overridden (the ipstep program exposes each as a gflag); the defaults are
+// documented in README.md ("Optimisers") and were chosen by measurement
+// (bench/, ../shared/design-notes.md).
+//
+//   name              path                      Ceres options
+//   newton            ceres::Problem            TRUST_REGION, LEVENBERG_MARQUARDT,
+//                                               SPARSE_NORMAL_CHOLESKY, CX_SPARSE,
+//                                               initial_trust_region_radius 1e16
+//   dogleg            ceres::Problem            TRUST_REGION, DOGLEG (TRADITIONAL),
+//                                               SPARSE_NORMAL_CHOLESKY, CX_SPARSE
+//   lbfgs             ceres::GradientProblem    LINE_SEARCH, LBFGS rank 20, WOLFE,
+//                                               approximate eigenvalue scaling on
+//   bfgs              ceres::GradientProblem    LINE_SEARCH, BFGS, WOLFE, scaling on
+//   ncg               ceres::GradientProblem    LINE_SEARCH, NONLINEAR_CONJUGATE_GRADIENT,
+//                                               POLAK_RIBIERE, WOLFE
+//   gradient_descent  ceres::GradientProblem    LINE_SEARCH, STEEPEST_DESCENT, WOLFE
+#pragma once
+
+#include <string>
+
+#include <ceres/gradient_problem_solver.h>
+#include <ceres/solver.h>
+
+namespace ipstep {
+
+enum class Optimizer { kNewton, kDogleg, kLbfgs, kBfgs, kNcg, kGradientDescent };
+
+const char* OptimizerName(Optimizer optimizer);
+const char* OptimizerNames();  // comma-separated list for messages
+// Throws InputError naming --optimizer.
+Optimizer ParseOptimizer(const std::string& name);
+bool IsTrustRegion(Optimizer optimizer);
+
+struct OptimizerOptions {
+  Optimizer optimizer = Optimizer::kNewton;
+
+  // Stopping rule (core/stopping_rule.h): velocity error [m/s].
+  double tolerance = 1e-6;
+
+  // Overrides. Empty string / 0 / negative: the optimiser's default.
+  int max_iterations = 0;   // default: newton, dogleg 100; lbfgs, bfgs 5000; ncg 20000;
+                            // gradient_descent 50000
+  double time_limit = 0.0;  // seconds per step; default 1e9 (none)
+  int num_threads = 1;
+  std::string linear_solver;   // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR
+  std::string sparse_library;  // SUITE_SPARSE, CX_SPARSE, EIGEN_SPARSE
+  double initial_trust_region_radius = 0.0;
+  std::string line_search;   // WOLFE or ARMIJO
+  std::string nonlinear_cg;  // FLETCHER_REEVES, POLAK_RIBIERE, HESTENES_STIFEL
+  int lbfgs_rank = 0;
+  // Line-search optimisers work in mass-weighted coordinates z_i = sqrt(m_i) x_i / h
+  // (the kinetic-energy metric; solver/first_order_potential.h) unless false.
+  bool mass_scaled_coordinates = true;
+};
+
+// The Ceres options for the trust-region optimisers (newton, dogleg), validated
+// with Solver::Options::IsValid. Throws InputError naming the offending flag.
+ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& options);
+// The same for the line-search optimisers.
+ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& options);
+// Validates the numeric fields (tolerance, limits): throws InputError.
+void ValidateOptimizerOptions(const OptimizerOptions& options);
+
+}  // namespace ipstep

@@ -1,0 +1,183 @@
+// The ipstep program on bad input: one clear error naming the file or flag and
+// key, exit code 2, never a crash or an abort. And the good path: outputs.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Outcome RunIpstep(const std::string& arguments) {
+  const std::string command = std::string(IPSTEP_BINARY) + " " + arguments + " 2>&1";
+  Outcome outcome;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return outcome;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) outcome.output.append(buffer, n);
+  const int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return outcome;
+}
+
+class ProgramInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("ipstep_program_input_" +
+            std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  void ExpectInputError(const std::string& arguments, const std::string& where,
+                        const std::string& key) {
+    const Outcome o = RunIpstep(arguments);
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_NE(o.output.find(where), std::string::npos) << arguments << "\n" << o.output;
+    EXPECT_NE(o.output.find(key), std::string::npos) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.find("Check failed"), std::string::npos) << o.output;
+    // One error line.
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  }
+
+  fs::path dir_;
+};
+
+const char* kValidScene = R"({
+  "dimension": 2,
+  "effects": ["springs"],
+  "nodes": {"positions": [[0, 0], [1.1, 0]], "masses": [1, 1]},
+  "springs": [{"nodes": [0, 1], "model": "hookean", "stiffness": 1}],
+  "pinned": [0]
+})";
+
+TEST_F(ProgramInput, BadFlags) {
+  ExpectInputError("--no_such_flag=3", "flag", "--no_such_flag");
+  ExpectInputError("--dt=abc", "flag", "--dt");
+  ExpectInputError("--dt=-1", "flag", "--dt");
+  ExpectInputError("--dt=nan", "flag", "--dt");
+  ExpectInputError("--steps=-5", "flag", "--steps");
+  ExpectInputError("--tolerance=0", "flag", "--tolerance");
+  ExpectInputError("--optimizer=adam", "flag", "--optimizer");
+  ExpectInputError("--integrator=rk4", "flag", "--integrator");
+  ExpectInputError("--integrator=newmark --newmark_beta=0", "flag", "--newmark_beta");
+  ExpectInputError("--integrator=newmark --newmark_gamma=2", "flag", "--newmark_gamma");
+  ExpectInputError("--newmark_beta=0.3", "flag", "--newmark_beta");
+  ExpectInputError("--on_failure=maybe", "flag", "--on_failure");
+  ExpectInputError("--linear_solver=MAGIC", "flag", "--linear_solver");
+  ExpectInputError("--sparse_library=MKL", "flag", "--sparse_library");
+  ExpectInputError("--optimizer=newton --line_search=ARMIJO", "flag", "--line_search");
+  ExpectInputError("--optimizer=lbfgs --linear_solver=DENSE_QR", "flag", "--linear_solver");
+  ExpectInputError("--optimizer=lbfgs --line_search=ARMIJO", "flag", "--line_search");
+  ExpectInputError("--max_iterations=-1", "flag", "--max_iterations");
+  ExpectInputError("--frame_every=0", "flag", "--frame_every");
+  ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
+  ExpectInputError("--stats=/nonexistent_dir/x.csv", "flag", "--stats");
+  ExpectInputError("stray_argument", "command line", "stray_argument");
+}
+
+TEST_F(ProgramInput, BadSceneFiles) {
+  ExpectInputError("--scene=" + (dir_ / "missing.json").string(), "missing.json", "");
+  ExpectInputError("--scene=no_such_builtin", "no_such_builtin", "oscillator");
+  const std::string malformed = Write("malformed.json", "{\"dimension\": 2,, }");
+  ExpectInputError("--scene=" + malformed, "malformed.json", "");
+  std::string text = kValidScene;
+  const std::string unknown = Write("unknown.json", text.replace(1, 0, "\"colour\": 1,"));
+  ExpectInputError("--scene=" + unknown, "unknown.json", "colour");
+  text = kValidScene;
+  const std::string mass = Write("mass.json", text.replace(text.find("[1, 1]"), 6, "[1, -1]"));
+  ExpectInputError("--scene=" + mass, "mass.json", "masses");
+  text = kValidScene;
+  const std::string index = Write("index.json", text.replace(text.find("[0, 1]"), 6, "[0, 7]"));
+  ExpectInputError("--scene=" + index, "index.json", "springs[0]");
+  text = kValidScene;
+  const std::string type =
+      Write("type.json", text.replace(text.find("\"stiffness\": 1"), 14, "\"stiffness\": \"1\""));
+  ExpectInputError("--scene=" + type, "type.json", "stiffness");
+}
+
+TEST_F(ProgramInput, ValidRunWritesItsOutputs) {
+  const std::string scene = Write("ok.json", kValidScene);
+  const std::string stats = (dir_ / "stats.csv").string();
+  const std::string log = (dir_ / "iterations.csv").string();
+  const std::string positions = (dir_ / "positions.csv").string();
+  const std::string frames = (dir_ / "frames").string();
+  const Outcome o = RunIpstep("--scene=" + scene + " --dt=0.1 --steps=4 --stats=" + stats +
+                              " --iterations_log=" + log + " --positions=" + positions +
+                              " --frames=" + frames + " --frame_every=2");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("springs: 1 hookean"), std::string::npos) << o.output;
+  std::ifstream in(stats);
+  std::string header;
+  std::getline(in, header);
+  for (const char* column : {"step", "time", "iterations", "converged", "wall_seconds",
+                             "kinetic_energy", "potential_energy", "total_energy", "residual"}) {
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+  }
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 4);
+  std::ifstream p(positions);
+  std::string first;
+  std::getline(p, first);
+  EXPECT_EQ(first, "node,x,y");
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00000.vtk"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00004.vtk"));
+  EXPECT_FALSE(fs::exists(fs::path(frames) / "frame_00003.vtk"));
+  std::ifstream l(log);
+  std::getline(l, header);
+  EXPECT_EQ(header, "step,iteration,energy,gradient_norm,step_size,seconds,residual");
+}
+
+TEST_F(ProgramInput, FailedStepStopsWithExitCodeThree) {
+  const Outcome o =
+      RunIpstep("--scene=cloth --optimizer=gradient_descent --max_iterations=2 --steps=3");
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_NE(o.output.find("iteration limit (2)"), std::string::npos) << o.output;
+  const Outcome c = RunIpstep(
+      "--scene=cloth --optimizer=gradient_descent --max_iterations=2 --steps=2 "
+      "--on_failure=continue");
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("2 failed"), std::string::npos) << c.output;
+}
+
+TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {
+  for (const char* scene : {"oscillator", "spring_pendulum", "cloth", "fpu"}) {
+    for (const char* integrator :
+         {"backward_euler", "newmark", "quasi_static", "symplectic_euler"}) {
+      for (const char* optimizer :
+           {"newton", "dogleg", "lbfgs", "bfgs", "ncg", "gradient_descent"}) {
+        std::ostringstream args;
+        args << "--scene=" << scene << " --integrator=" << integrator
+             << " --optimizer=" << optimizer << " --steps=2 --on_failure=continue";
+        if (std::string(scene) == "cloth") args << " --grid_size=6";
+        if (std::string(integrator) == "symplectic_euler") args << " --dt=1e-4";
+        const Outcome o = RunIpstep(args.str());
+        EXPECT_EQ(o.exit_code, 0) << args.str() << "\n" << o.output;
+        EXPECT_NE(o.output.find("done: 2 steps"), std::string::npos) << args.str() << o.output;
+      }
+    }
+  }
+}
+
+}  // namespace
