@@ -28,10 +28,13 @@ DEFINE_double(trust_region_radius, 0.0,
               "newton/dogleg: initial trust-region radius; 0: newton 1e16, dogleg 1e4");
 DEFINE_string(line_search, "", "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
 DEFINE_string(nonlinear_cg, "",
-              "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIFEL (default POLAK_RIBIERE)");
+              "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIEFEL (default FLETCHER_REEVES)");
 DEFINE_int32(lbfgs_rank, 0, "lbfgs: number of correction pairs; 0: 20");
 DEFINE_bool(mass_scaled_coordinates, true,
             "line-search optimizers: work in z = sqrt(m) x / h (kinetic-energy metric)");
+DEFINE_bool(precise_energy, true,
+            "line-search optimizers: sum energies in extended precision (resolves smaller "
+            "force imbalances; costs one extra energy pass per evaluation)");
 DEFINE_double(newmark_beta, 0.25, "Newmark beta, in (0, 1]");
 DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in (0, 1]");
 DEFINE_int32(grid_size, 0, "Override the node count per side of a scene's grid; 0: the scene's");
@@ -81,6 +84,7 @@ SimulationOptions SimulationOptionsFromFlags() {
   p.nonlinear_cg = FLAGS_nonlinear_cg;
   p.lbfgs_rank = FLAGS_lbfgs_rank;
   p.mass_scaled_coordinates = FLAGS_mass_scaled_coordinates;
+  p.precise_line_search_energy = FLAGS_precise_energy;
   for (const char* flag :
        {"linear_solver", "sparse_library", "trust_region_radius", "num_threads"}) {
     RequireOptimizerKind(flag, true, p.optimizer);

@@ -1,5 +1,6 @@
 #include "core/incremental_potential.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -39,10 +40,79 @@ void IncrementalPotential::AddTerm(Term term) {
   max_residuals_ = std::max(max_residuals_, term.cost->num_residuals());
   max_nodes_ = std::max(max_nodes_, static_cast<int>(term.nodes.size()));
   residuals_.resize(max_residuals_);
+  precise_residuals_.resize(max_residuals_);
   jacobian_storage_.resize(static_cast<size_t>(max_residuals_) * max_nodes_ * dimension_);
   jacobians_.resize(max_nodes_);
   parameters_.resize(max_nodes_);
   terms_.push_back(std::move(term));
+  ++structure_version_;
+}
+
+int IncrementalPotential::RemoveTerms(const std::string& family) {
+  const size_t before = terms_.size();
+  terms_.erase(std::remove_if(terms_.begin(), terms_.end(),
+                              [&](const Term& t) { return t.family == family; }),
+               terms_.end());
+  const int removed = static_cast<int>(before - terms_.size());
+  if (removed > 0) ++structure_version_;
+  return removed;
+}
+
+void IncrementalPotential::AddStepFilter(std::unique_ptr<StepFilter> filter) {
+  filters_.push_back(std::move(filter));
+}
+
+void IncrementalPotential::NotifyAccepted(const double* x) const {
+  for (const auto& f : filters_) f->OnAccepted(x);
+}
+
+bool IncrementalPotential::IsStepValid(const double* x) const {
+  for (const auto& f : filters_) {
+    if (!f->IsStepValid(x)) return false;
+  }
+  return true;
+}
+
+double IncrementalPotential::MaxStepSize(const double* from, const double* to) const {
+  double t = 1.0;
+  for (const auto& f : filters_) t = std::min(t, f->MaxStepSize(from, to));
+  return t;
+}
+
+bool IncrementalPotential::IsFeasible(const double* x) const {
+  for (const auto& f : filters_) {
+    if (!f->IsFeasible(x)) return false;
+  }
+  return true;
+}
+
+bool IncrementalPotential::EvaluatePreciseEnergy(const double* x, long double* energy) const {
+  if (!IsStepValid(x)) return false;
+  long double total = 0.0L;
+  for (const Term& term : terms_) {
+    const double weight = TermWeight(term.kind, *context_);
+    if (weight == 0.0) continue;
+    const int m = term.cost->num_residuals();
+    for (size_t b = 0; b < term.nodes.size(); ++b) parameters_[b] = x + dimension_ * term.nodes[b];
+    long double s = 0.0L;
+    if (term.precise_residual) {
+      if (!term.precise_residual(parameters_.data(), precise_residuals_.data())) return false;
+      for (int r = 0; r < m; ++r) s += precise_residuals_[r] * precise_residuals_[r];
+    } else {
+      if (!term.cost->Evaluate(parameters_.data(), residuals_.data(), nullptr)) return false;
+      for (int r = 0; r < m; ++r) s += static_cast<long double>(residuals_[r]) * residuals_[r];
+    }
+    long double e = s;
+    if (term.loss) {
+      double rho[3];
+      term.loss->Evaluate(static_cast<double>(s), rho);
+      e = rho[0];
+    }
+    total += 0.5L * weight * e;
+  }
+  if (!std::isfinite(static_cast<double>(total))) return false;
+  *energy = total;
+  return true;
 }
 
 int IncrementalPotential::CountTerms(TermKind kind) const {
@@ -52,6 +122,7 @@ int IncrementalPotential::CountTerms(TermKind kind) const {
 }
 
 bool IncrementalPotential::Evaluate(const double* x, double* energy, double* gradient) const {
+  if (!IsStepValid(x)) return false;
   return Accumulate(nullptr, /*weighted=*/true, x, energy, gradient);
 }
 

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "core/step_context.h"
+#include "core/step_filter.h"
 #include "core/term.h"
 
 namespace ipstep {
@@ -30,8 +31,22 @@ class IncrementalPotential {
 
   // Checks node indices and parameter block sizes (throws std::invalid_argument).
   void AddTerm(Term term);
+  // Removes every term of `family` (e.g. to rebuild a contact set); returns how many.
+  int RemoveTerms(const std::string& family);
   const std::vector<Term>& terms() const { return terms_; }
   int CountTerms(TermKind kind) const;
+  // Changes whenever terms are added or removed: solvers that mirror the terms
+  // (the ceres::Problem) rebuild when it differs from the version they built.
+  int structure_version() const { return structure_version_; }
+
+  // Step filters (core/step_filter.h), owned. Evaluate() fails at trial points
+  // that any filter rejects.
+  void AddStepFilter(std::unique_ptr<StepFilter> filter);
+  void NotifyAccepted(const double* x) const;
+  bool IsStepValid(const double* x) const;
+  double MaxStepSize(const double* from, const double* to) const;
+  bool IsFeasible(const double* x) const;
+  bool has_step_filters() const { return !filters_.empty(); }
 
   using TermFilter = std::function<bool(const Term&)>;
 
@@ -44,6 +59,9 @@ class IncrementalPotential {
   bool EvaluateUnweighted(const TermFilter& filter, const double* x, double* energy,
                           double* gradient) const;
 
+  // E(x) with residuals in extended precision where terms provide them.
+  bool EvaluatePreciseEnergy(const double* x, long double* energy) const;
+
  private:
   bool Accumulate(const TermFilter& filter, bool weighted, const double* x, double* energy,
                   double* gradient) const;
@@ -52,10 +70,13 @@ class IncrementalPotential {
   int num_nodes_;
   std::unique_ptr<StepContext> context_;  // stable address: terms point into it
   std::vector<Term> terms_;
+  std::vector<std::unique_ptr<StepFilter>> filters_;
+  int structure_version_ = 0;
   int max_residuals_ = 0;
   int max_nodes_ = 0;
   // Scratch for evaluation (mutable: Evaluate is logically const).
   mutable std::vector<double> residuals_;
+  mutable std::vector<long double> precise_residuals_;
   mutable std::vector<double> jacobian_storage_;
   mutable std::vector<double*> jacobians_;
   mutable std::vector<const double*> parameters_;

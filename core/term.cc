@@ -28,14 +28,16 @@ double TermWeight(TermKind kind, const StepContext& context) {
   return 0.0;
 }
 
-WeightedCostFunction::WeightedCostFunction(const ceres::CostFunction* inner, const double* weight)
-    : inner_(inner), weight_(weight) {
+WeightedCostFunction::WeightedCostFunction(const ceres::CostFunction* inner, const double* weight,
+                                           const bool* veto)
+    : inner_(inner), weight_(weight), veto_(veto) {
   set_num_residuals(inner->num_residuals());
   *mutable_parameter_block_sizes() = inner->parameter_block_sizes();
 }
 
 bool WeightedCostFunction::Evaluate(double const* const* parameters, double* residuals,
                                     double** jacobians) const {
+  if (veto_ != nullptr && *veto_) return false;
   if (!inner_->Evaluate(parameters, residuals, jacobians)) return false;
   const double scale = std::sqrt(*weight_);
   const int m = num_residuals();

@@ -10,6 +10,7 @@
 // So one definition serves every optimiser.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,19 +37,26 @@ struct Term {
   std::vector<int> nodes;                     // one parameter block per node
   std::unique_ptr<ceres::CostFunction> cost;  // unweighted residual
   std::unique_ptr<ceres::LossFunction> loss;  // may be null
+  // Optional: the same residual evaluated in extended precision (long double),
+  // set for autodiff terms. Line searches compare energies whose differences near
+  // convergence are far below double round-off of the energies themselves.
+  std::function<bool(const double* const* x, long double* residuals)> precise_residual;
 };
 
 // Decorator that multiplies residuals and Jacobians by sqrt(weight), the weight
-// read through a pointer at every evaluation.
+// read through a pointer at every evaluation. When `veto` is set and true, the
+// evaluation fails (a step filter rejected the trial point).
 class WeightedCostFunction : public ceres::CostFunction {
  public:
-  WeightedCostFunction(const ceres::CostFunction* inner, const double* weight);
+  WeightedCostFunction(const ceres::CostFunction* inner, const double* weight,
+                       const bool* veto = nullptr);
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
 
  private:
   const ceres::CostFunction* inner_;
   const double* weight_;
+  const bool* veto_;
 };
 
 // Decorator for terms with a loss: rho_w(s) = weight * rho(s).

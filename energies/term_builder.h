@@ -40,31 +40,43 @@ class TermBuilder {
   // with kOneResidualPerCoordinate).
   template <template <int> class Functor, int kNumResiduals, size_t kNumNodes, typename... Args>
   void AddAutoDiff(TermKind kind, const std::array<int, kNumNodes>& nodes, Args&&... args) {
-    std::unique_ptr<ceres::CostFunction> cost;
+    Term term;
     if (dimension() == 2) {
-      cost = MakeAutoDiff<Functor<2>, kNumResiduals, 2>(std::make_index_sequence<kNumNodes>(),
-                                                        std::forward<Args>(args)...);
+      MakeAutoDiff<Functor<2>, kNumResiduals, 2>(std::make_index_sequence<kNumNodes>(), &term,
+                                                 std::forward<Args>(args)...);
     } else {
-      cost = MakeAutoDiff<Functor<3>, kNumResiduals, 3>(std::make_index_sequence<kNumNodes>(),
-                                                        std::forward<Args>(args)...);
+      MakeAutoDiff<Functor<3>, kNumResiduals, 3>(std::make_index_sequence<kNumNodes>(), &term,
+                                                 std::forward<Args>(args)...);
     }
-    Add(kind, std::vector<int>(nodes.begin(), nodes.end()), std::move(cost));
+    term.kind = kind;
+    term.nodes.assign(nodes.begin(), nodes.end());
+    Add(std::move(term));
   }
 
   // Adds any cost function (analytic, numeric, autodiff) with optional loss.
   void Add(TermKind kind, std::vector<int> nodes, std::unique_ptr<ceres::CostFunction> cost,
            std::unique_ptr<ceres::LossFunction> loss = nullptr);
+  // Adds a fully built term (its family is set here).
+  void Add(Term term);
 
   // Family name recorded on the terms added from now on (the effect's name).
   void set_family(std::string family) { family_ = std::move(family); }
 
  private:
+  // The autodiff cost function, and the same functor in extended precision.
   template <class F, int kNumResiduals, int kDim, size_t... Is, typename... Args>
-  static std::unique_ptr<ceres::CostFunction> MakeAutoDiff(std::index_sequence<Is...>,
-                                                           Args&&... args) {
+  static void MakeAutoDiff(std::index_sequence<Is...>, Term* term, Args&&... args) {
     constexpr int kResiduals = kNumResiduals == kOneResidualPerCoordinate ? kDim : kNumResiduals;
-    return std::make_unique<ceres::AutoDiffCostFunction<F, kResiduals, ((void)Is, kDim)...>>(
-        new F(std::forward<Args>(args)...));
+    F functor(std::forward<Args>(args)...);
+    term->cost = std::make_unique<ceres::AutoDiffCostFunction<F, kResiduals, ((void)Is, kDim)...>>(
+        new F(functor));
+    term->precise_residual = [functor](const double* const* x, long double* residuals) {
+      long double xl[sizeof...(Is)][kDim];
+      for (size_t b = 0; b < sizeof...(Is); ++b) {
+        for (int k = 0; k < kDim; ++k) xl[b][k] = x[b][k];
+      }
+      return functor(static_cast<const long double*>(xl[Is])..., residuals);
+    };
   }
 
   const Scene& scene_;

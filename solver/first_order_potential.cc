@@ -6,8 +6,9 @@
 namespace ipstep {
 
 FirstOrderPotential::FirstOrderPotential(const IncrementalPotential* potential, const State* state,
-                                         bool mass_scaled)
+                                         bool mass_scaled, bool precise_energy)
     : potential_(potential),
+      precise_energy_(precise_energy),
       full_x_(Eigen::VectorXd::Zero(state->num_dofs())),
       full_gradient_(state->num_dofs()) {
   const int dim = state->dimension;
@@ -22,9 +23,12 @@ FirstOrderPotential::FirstOrderPotential(const IncrementalPotential* potential, 
   cached_parameters_.resize(free_dofs_.size());
 }
 
-void FirstOrderPotential::SetFullPositions(const Eigen::VectorXd& full) {
+bool FirstOrderPotential::SetFullPositions(const Eigen::VectorXd& full) {
   full_x_ = full;
   cache_valid_ = false;
+  reference_energy_ = 0.0L;
+  if (!precise_energy_) return true;
+  return potential_->EvaluatePreciseEnergy(full_x_.data(), &reference_energy_);
 }
 
 void FirstOrderPotential::ToParameters(const Eigen::VectorXd& full, double* parameters) const {
@@ -44,6 +48,11 @@ bool FirstOrderPotential::Evaluate(const double* parameters, double* cost, doubl
   double energy = 0.0;
   if (!potential_->Evaluate(full_x_.data(), &energy, full_gradient_.data())) return false;
   const double inverse_weight = 1.0 / energy_scale();
+  if (precise_energy_) {
+    long double precise = 0.0L;
+    if (!potential_->EvaluatePreciseEnergy(full_x_.data(), &precise)) return false;
+    energy = static_cast<double>(precise - reference_energy_);
+  }
   *cost = energy * inverse_weight;
   // The full gradient is always computed so that the stopping rule can reuse it.
   std::copy(parameters, parameters + free_dofs_.size(), cached_parameters_.begin());

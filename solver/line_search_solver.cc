@@ -8,6 +8,9 @@
 
 namespace ipstep {
 
+// Restarts of a stalled line search (see Solve).
+constexpr int kMaxRestarts = 10;
+
 // BFGS keeps a dense n x n inverse Hessian approximation.
 constexpr int kMaxBfgsParameters = 20000;
 
@@ -17,7 +20,8 @@ LineSearchSolver::LineSearchSolver(IncrementalPotential* potential, const State*
       state_(state),
       options_(options),
       ceres_options_(MakeLineSearchOptions(options)),
-      function_(new FirstOrderPotential(potential, state, options.mass_scaled_coordinates)),
+      function_(new FirstOrderPotential(potential, state, options.mass_scaled_coordinates,
+                                        options.precise_line_search_energy)),
       problem_(std::make_unique<ceres::GradientProblem>(function_)),
       parameters_(function_->NumParameters()),
       gradient_(state->num_dofs()) {
@@ -28,8 +32,12 @@ LineSearchSolver::LineSearchSolver(IncrementalPotential* potential, const State*
                          " free degrees of freedom");
   }
   callback_ = std::make_unique<StoppingCallback>(
-      options.tolerance, [this] { return MeasureAt(parameters_.data()); }, &sink_,
-      function_->energy_scale());
+      options.tolerance,
+      [this] {
+        potential_->NotifyAccepted(function_->FromParameters(parameters_.data()).data());
+        return MeasureAt(parameters_.data());
+      },
+      &sink_, function_->energy_scale());
   ceres_options_.callbacks.push_back(callback_.get());
 }
 
@@ -42,24 +50,46 @@ double LineSearchSolver::MeasureAt(const double* parameters) {
 
 StepSolveResult LineSearchSolver::Solve(Eigen::VectorXd* x) {
   StepSolveResult result;
-  function_->SetFullPositions(*x);
-  function_->ToParameters(*x, parameters_.data());
-  callback_->Reset();
+  potential_->NotifyAccepted(x->data());
+  if (!function_->SetFullPositions(*x)) {
+    result.status = "energy cannot be evaluated at the initial guess";
+    result.residual = std::numeric_limits<double>::infinity();
+    return result;
+  }
   if (parameters_.empty()) {
     result.converged = true;
     result.status = "converged";
     return result;
   }
+  function_->ToParameters(*x, parameters_.data());
+  callback_->Reset();
+  // Ceres compares energies in double: once the decrease per iteration falls
+  // below round-off of the energy drop since the start, the line search stalls
+  // (reported as CONVERGENCE). A restart from the last iterate re-references
+  // the energy there, which restores the resolution (README "Precision floor").
+  const int max_iterations = ceres_options_.max_num_iterations;
+  ceres::GradientProblemSolver::Options options = ceres_options_;
   ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(ceres_options_, *problem_, parameters_.data(), &summary);
+  double previous_residual = std::numeric_limits<double>::infinity();
+  for (int restart = 0;; ++restart) {
+    options.max_num_iterations = max_iterations - result.iterations;
+    ceres::Solve(options, *problem_, parameters_.data(), &summary);
+    result.iterations +=
+        summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
+    result.evaluations += summary.num_gradient_evaluations;
+    result.residual = MeasureAt(parameters_.data());
+    const bool stalled = summary.termination_type == ceres::CONVERGENCE;
+    if (result.residual <= options_.tolerance || !stalled || restart == kMaxRestarts ||
+        result.residual >= previous_residual || result.iterations >= max_iterations) {
+      break;
+    }
+    previous_residual = result.residual;
+    if (!function_->SetFullPositions(function_->FromParameters(parameters_.data()))) break;
+  }
   *x = function_->FromParameters(parameters_.data());
-  result.iterations =
-      summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
-  result.evaluations = summary.num_gradient_evaluations;
   result.ceres_report = summary.BriefReport();
-  result.residual = MeasureAt(parameters_.data());
-  ClassifySolve(summary.termination_type, summary.message, result.iterations,
-                ceres_options_.max_num_iterations, options_.tolerance, &result);
+  ClassifySolve(summary.termination_type, summary.message, result.iterations, max_iterations,
+                options_.tolerance, &result);
   return result;
 }
 

@@ -62,7 +62,8 @@ void SetLineSearchOptions(const OptimizerOptions& o, CeresOptions* c) {
       break;
     case Optimizer::kNcg:
       c->line_search_direction_type = ceres::NONLINEAR_CONJUGATE_GRADIENT;
-      c->nonlinear_conjugate_gradient_type = ceres::POLAK_RIBIERE;
+      // Measured: Polak-Ribiere stalled on cloth steps that Fletcher-Reeves finished.
+      c->nonlinear_conjugate_gradient_type = ceres::FLETCHER_REEVES;
       break;
     default:
       c->line_search_direction_type = ceres::STEEPEST_DESCENT;
@@ -77,7 +78,7 @@ void SetLineSearchOptions(const OptimizerOptions& o, CeresOptions* c) {
                                      o.nonlinear_cg, &c->nonlinear_conjugate_gradient_type)) {
     throw InputError("flag", "--nonlinear_cg",
                      "unknown type '" + o.nonlinear_cg +
-                         "' (FLETCHER_REEVES, POLAK_RIBIERE or HESTENES_STIFEL)");
+                         "' (FLETCHER_REEVES, POLAK_RIBIERE or HESTENES_STIEFEL)");
   }
   if (o.lbfgs_rank > 0) c->max_lbfgs_rank = o.lbfgs_rank;
 }

@@ -13,7 +13,7 @@
 //                                               approximate eigenvalue scaling on
 //   bfgs              ceres::GradientProblem    LINE_SEARCH, BFGS, WOLFE, scaling on
 //   ncg               ceres::GradientProblem    LINE_SEARCH, NONLINEAR_CONJUGATE_GRADIENT,
-//                                               POLAK_RIBIERE, WOLFE
+//                                               FLETCHER_REEVES, WOLFE
 //   gradient_descent  ceres::GradientProblem    LINE_SEARCH, STEEPEST_DESCENT, WOLFE
 #pragma once
 
@@ -47,11 +47,14 @@ struct OptimizerOptions {
   std::string sparse_library;  // SUITE_SPARSE, CX_SPARSE, EIGEN_SPARSE
   double initial_trust_region_radius = 0.0;
   std::string line_search;   // WOLFE or ARMIJO
-  std::string nonlinear_cg;  // FLETCHER_REEVES, POLAK_RIBIERE, HESTENES_STIFEL
+  std::string nonlinear_cg;  // FLETCHER_REEVES, POLAK_RIBIERE, HESTENES_STIEFEL
   int lbfgs_rank = 0;
   // Line-search optimisers work in mass-weighted coordinates z_i = sqrt(m_i) x_i / h
   // (the kinetic-energy metric; solver/first_order_potential.h) unless false.
   bool mass_scaled_coordinates = true;
+  // Line-search optimisers compare energies summed in extended precision
+  // (solver/first_order_potential.h) unless false.
+  bool precise_line_search_energy = true;
 };
 
 // The Ceres options for the trust-region optimisers (newton, dogleg), validated

@@ -49,7 +49,7 @@ double FittedSlope(const std::vector<double>& h, const std::vector<double>& erro
 }
 
 double FinalError(const std::string& integrator, double h, double t_end, const State4& exact) {
-  Simulation sim(testing::SpringPendulumScene(), testing::Options(integrator, "newton", h, 1e-9));
+  Simulation sim(testing::SpringPendulumScene(), testing::Options(integrator, "newton", h, 1e-7));
   const int steps = static_cast<int>(std::lround(t_end / h));
   for (int i = 0; i < steps; ++i) {
     const StepReport r = sim.Step();
