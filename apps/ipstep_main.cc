@@ -43,7 +43,9 @@ int Run() {
   std::unique_ptr<StatsWriter> stats;
   std::unique_ptr<IterationLogWriter> iterations;
   std::unique_ptr<VtkFrameWriter> frames;
-  if (!FLAGS_stats.empty()) stats = std::make_unique<StatsWriter>(FLAGS_stats, "--stats");
+  if (!FLAGS_stats.empty()) {
+    stats = std::make_unique<StatsWriter>(FLAGS_stats, "--stats", sim.DiagnosticNames());
+  }
   if (!FLAGS_iterations_log.empty()) {
     iterations = std::make_unique<IterationLogWriter>(FLAGS_iterations_log, "--iterations_log");
     sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });

@@ -47,6 +47,7 @@ class IncrementalPotential {
   double MaxStepSize(const double* from, const double* to) const;
   bool IsFeasible(const double* x) const;
   bool has_step_filters() const { return !filters_.empty(); }
+  const std::vector<std::unique_ptr<StepFilter>>& step_filters() const { return filters_; }
 
   using TermFilter = std::function<bool(const Term&)>;
 

@@ -11,7 +11,18 @@
 //                      feasible (continuous collision detection), used to pull
 //                      the initial guess back to a feasible start;
 //   IsFeasible(x)      the state check after every step.
+// Optional hooks (defaults do nothing):
+//   BeginStep(x_n)     before the predictor is pulled back, once per step
+//                      (e.g. lag friction normal forces at the step start);
+//   RefreshTerms(x)    after each solve of a step; return true if the filter
+//                      changed the potential's terms (e.g. the contact set grew
+//                      or friction was re-lagged): the step is solved again from x;
+//   Diagnostics        named per-step values for the --stats CSV (NaN: empty).
 #pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace ipstep {
 
@@ -22,6 +33,12 @@ class StepFilter {
   virtual bool IsStepValid(const double* x) const = 0;
   virtual double MaxStepSize(const double* from, const double* to) const = 0;
   virtual bool IsFeasible(const double* x) const = 0;
+
+  virtual void BeginStep(const double* /*x_n*/) {}
+  virtual bool RefreshTerms(const double* /*x*/) { return false; }
+  virtual std::vector<std::string> DiagnosticNames() const { return {}; }
+  // Values in the order of DiagnosticNames(), at state positions x.
+  virtual std::vector<double> Diagnostics(const double* /*x*/) const { return {}; }
 };
 
 }  // namespace ipstep

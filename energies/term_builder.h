@@ -59,6 +59,12 @@ class TermBuilder {
   // Adds a fully built term (its family is set here).
   void Add(Term term);
 
+  // Hands a step filter (core/step_filter.h) to the potential, which owns it.
+  void AddStepFilter(std::unique_ptr<StepFilter> filter) {
+    potential_->AddStepFilter(std::move(filter));
+  }
+  IncrementalPotential* potential() const { return potential_; }
+
   // Family name recorded on the terms added from now on (the effect's name).
   void set_family(std::string family) { family_ = std::move(family); }
 

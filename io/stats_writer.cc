@@ -1,5 +1,6 @@
 #include "io/stats_writer.h"
 
+#include <cmath>
 #include <iomanip>
 
 #include "core/input_error.h"
@@ -16,17 +17,25 @@ std::ofstream OpenForWriting(const std::string& path, const std::string& flag) {
 
 }  // namespace
 
-StatsWriter::StatsWriter(const std::string& path, const std::string& flag)
+StatsWriter::StatsWriter(const std::string& path, const std::string& flag,
+                         const std::vector<std::string>& diagnostic_names)
     : out_(OpenForWriting(path, flag)) {
   out_ << "step,time,iterations,evaluations,converged,status,wall_seconds,kinetic_energy,"
-          "potential_energy,total_energy,residual\n";
+          "potential_energy,total_energy,residual";
+  for (const std::string& name : diagnostic_names) out_ << ',' << name;
+  out_ << '\n';
 }
 
 void StatsWriter::Write(const StepReport& r) {
   out_ << r.step << ',' << r.time << ',' << r.iterations << ',' << r.evaluations << ','
        << (r.converged ? 1 : 0) << ",\"" << r.status << "\"," << r.wall_seconds << ','
        << r.energies.kinetic << ',' << r.energies.potential << ',' << r.energies.total() << ','
-       << r.residual << '\n';
+       << r.residual;
+  for (double value : r.diagnostics) {
+    out_ << ',';
+    if (std::isfinite(value)) out_ << value;
+  }
+  out_ << '\n';
 }
 
 IterationLogWriter::IterationLogWriter(const std::string& path, const std::string& flag)

@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "sim/simulation.h"
 #include "solver/step_solver.h"
@@ -13,7 +14,9 @@ namespace ipstep {
 class StatsWriter {
  public:
   // Throws InputError naming `flag` if the file cannot be written.
-  StatsWriter(const std::string& path, const std::string& flag);
+  // `diagnostic_names`: extra columns (Simulation::DiagnosticNames()).
+  StatsWriter(const std::string& path, const std::string& flag,
+              const std::vector<std::string>& diagnostic_names = {});
   void Write(const StepReport& report);
 
  private:

@@ -88,6 +88,56 @@ void Simulation::ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const {
   state_.PrescribedPositions(t, x);
 }
 
+void Simulation::SolveStep(Eigen::VectorXd* x, StepReport* report) {
+  const double t_next = state_.time + time_step_;
+  if (potential_->has_step_filters()) {
+    for (const auto& filter : potential_->step_filters()) filter->BeginStep(state_.x.data());
+    // Start from a feasible point: free nodes move from x_n towards the guess only
+    // as far as continuous collision detection allows (with a safety factor).
+    Eigen::VectorXd start = state_.x;
+    ApplyBoundaryConditions(t_next, &start);
+    potential_->NotifyAccepted(state_.x.data());
+    if (!potential_->IsStepValid(start.data())) {
+      report->converged = false;
+      report->status = "infeasible start: prescribed nodes move into an obstacle";
+      *x = start;
+      return;
+    }
+    const double t = potential_->MaxStepSize(start.data(), x->data());
+    if (t < 1.0) *x = start + kFeasibleStartFraction * t * (*x - start);
+  }
+  if (!x->allFinite()) {
+    report->converged = false;
+    report->status = "non-finite initial guess";
+    return;
+  }
+  for (int solve = 0;; ++solve) {
+    const StepSolveResult result = solver_->Solve(x);
+    report->converged = result.converged;
+    report->status = result.status;
+    report->iterations += result.iterations;
+    report->evaluations += result.evaluations;
+    report->residual = result.residual;
+    if (solve >= kMaxRefreshes) break;
+    bool refreshed = false;
+    for (const auto& filter : potential_->step_filters())
+      refreshed |= filter->RefreshTerms(x->data());
+    if (!refreshed) break;
+  }
+  if (potential_->has_step_filters() && !potential_->IsFeasible(x->data())) {
+    report->converged = false;
+    report->status = "infeasible state after the step (penetration)";
+  }
+}
+
+std::vector<std::string> Simulation::DiagnosticNames() const {
+  std::vector<std::string> names;
+  for (const auto& filter : potential_->step_filters()) {
+    for (const std::string& name : filter->DiagnosticNames()) names.push_back(name);
+  }
+  return names;
+}
+
 void Simulation::set_iteration_sink(IterationSink sink) {
   if (solver_) solver_->set_iteration_sink(std::move(sink));
 }
@@ -111,17 +161,7 @@ StepReport Simulation::Step() {
   integrator_->Predict(state_, gravity_, h, &potential_->context(), &x);
   if (integrator_->is_variational()) {
     ApplyBoundaryConditions(t_next, &x);
-    if (!x.allFinite()) {
-      report.converged = false;
-      report.status = "non-finite initial guess";
-    } else {
-      const StepSolveResult solve = solver_->Solve(&x);
-      report.converged = solve.converged;
-      report.status = solve.status;
-      report.iterations = solve.iterations;
-      report.evaluations = solve.evaluations;
-      report.residual = solve.residual;
-    }
+    SolveStep(&x, &report);
     integrator_->Update(x, h, &state_);
   } else {
     Eigen::VectorXd forces;
@@ -147,6 +187,9 @@ StepReport Simulation::Step() {
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report.energies = Energies();
+  for (const auto& filter : potential_->step_filters()) {
+    for (double value : filter->Diagnostics(state_.x.data())) report.diagnostics.push_back(value);
+  }
   return report;
 }
 

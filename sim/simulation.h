@@ -33,6 +33,7 @@ struct StepReport {
   double wall_seconds = 0.0;
   double residual = 0.0;  // stopping measure [m/s]
   EnergyReport energies;
+  std::vector<double> diagnostics;  // values of Simulation::DiagnosticNames()
 };
 
 class Simulation {
@@ -55,12 +56,21 @@ class Simulation {
   // One line per active effect (what was built), in scene order.
   const std::vector<std::string>& effect_summaries() const { return effect_summaries_; }
   EnergyReport Energies() const;
+  // Extra per-step columns contributed by step filters (e.g. contact).
+  std::vector<std::string> DiagnosticNames() const;
   void set_iteration_sink(IterationSink sink);
+
+  // A step is solved again from its result while a step filter refreshes its
+  // terms (contact set, lagged friction), at most this many times.
+  static constexpr int kMaxRefreshes = 10;
+  // The pulled-back start stops at this fraction of the collision-free distance.
+  static constexpr double kFeasibleStartFraction = 0.9;
 
  private:
   void BuildState();
   void BuildPotential();
   void ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const;
+  void SolveStep(Eigen::VectorXd* x, StepReport* report);
 
   Scene scene_;
   SimulationOptions options_;
