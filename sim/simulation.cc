@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
@@ -136,6 +137,13 @@ std::vector<std::string> Simulation::DiagnosticNames() const {
     for (const std::string& name : filter->DiagnosticNames()) names.push_back(name);
   }
   return names;
+}
+
+void Simulation::ReplaceStepSolver(const StepSolverFactory& factory) {
+  if (!integrator_->is_variational()) {
+    throw std::logic_error(integrator_->name() + " does not use a step solver");
+  }
+  solver_ = factory(potential_.get(), &state_);
 }
 
 void Simulation::set_iteration_sink(IterationSink sink) {

@@ -3,6 +3,7 @@
 // integrators) a step solver. Everything is built once; Step() advances by h.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +57,12 @@ class Simulation {
   // One line per active effect (what was built), in scene order.
   const std::vector<std::string>& effect_summaries() const { return effect_summaries_; }
   EnergyReport Energies() const;
+  // Replaces the Ceres step solver by another StepSolver over the same potential
+  // and state (e.g. a reference solver in bench/). Variational integrators only.
+  using StepSolverFactory =
+      std::function<std::unique_ptr<StepSolver>(IncrementalPotential*, const State*)>;
+  void ReplaceStepSolver(const StepSolverFactory& factory);
+
   // Extra per-step columns contributed by step filters (e.g. contact).
   std::vector<std::string> DiagnosticNames() const;
   void set_iteration_sink(IterationSink sink);
