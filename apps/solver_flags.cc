@@ -13,7 +13,7 @@ DEFINE_string(integrator, "backward_euler",
 DEFINE_string(optimizer, "newton", "newton | dogleg | lbfgs | bfgs | ncg | gradient_descent");
 DEFINE_double(dt, 0.0, "Time step [s]; 0 uses the scene's time_step");
 DEFINE_int32(steps, -1, "Number of steps; -1 uses the scene's steps");
-DEFINE_double(tolerance, 1e-6,
+DEFINE_double(tolerance, 1e-5,
               "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step");
 DEFINE_int32(max_iterations, 0,
              "Optimizer iteration limit per step; 0: newton/dogleg 100, lbfgs/bfgs 5000, ncg "

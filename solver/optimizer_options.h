@@ -36,7 +36,7 @@ struct OptimizerOptions {
   Optimizer optimizer = Optimizer::kNewton;
 
   // Stopping rule (core/stopping_rule.h): velocity error [m/s].
-  double tolerance = 1e-6;
+  double tolerance = 1e-5;
 
   // Overrides. Empty string / 0 / negative: the optimiser's default.
   int max_iterations = 0;   // default: newton, dogleg 100; lbfgs, bfgs 5000; ncg 20000;

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs ipstep's build and test dependencies from Debian's packages.
+# Nothing is downloaded at build time; this is the only install step.
+set -euo pipefail
+packages=(
+  cmake g++ make
+  libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
+  libgtest-dev libbenchmark-dev nlohmann-json3-dev
+  python3 python3-matplotlib  # bench/plot_results.py
+)
+run_as_root() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+run_as_root apt-get update -qq
+run_as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+  "${packages[@]}" > /dev/null
+echo "dependencies installed: ${packages[*]}"
