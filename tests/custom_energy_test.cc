@@ -7,6 +7,7 @@
 
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
+#include "problems/scene_loader.h"
 #include "sim/simulation.h"
 
 namespace {
@@ -90,6 +91,27 @@ TEST(CustomEnergy, RegisteredEnergyRunsWithEveryOptimizer) {
       }
     }
   }
+}
+
+TEST(CustomEnergy, TheSceneOfDocsNewEnergyLoadsAndRuns) {
+  // The scene printed in docs/new_energy.md, verbatim.
+  const char* text = R"({
+  "effects": ["tether"],
+  "tether": {"stiffness": 8.0},
+  "particle": {"position": [0.3, 0.0], "mass": 2.0}
+})";
+  ipstep::SceneLoadOptions load;
+  load.extra_effects = ipstep::EffectRegistry::Global().UserNames();
+  const ipstep::Scene scene = ipstep::ParseScene(std::string(text), "docs/new_energy.md", load);
+  ipstep::SimulationOptions options;
+  options.time_step = 0.1;
+  ipstep::Simulation sim(scene, options);
+  EXPECT_NEAR(sim.Energies().total(), 0.5 * 8.0 * 0.09, 1e-15);
+  EXPECT_TRUE(sim.Step().converged);
+  // Without the effect listed, the parameters are an error.
+  const std::string unlisted =
+      R"({"tether": {"stiffness": 8.0}, "particle": {"position": [0, 0], "mass": 1}})";
+  EXPECT_THROW(ipstep::ParseScene(unlisted, "unlisted", load), ipstep::InputError);
 }
 
 TEST(CustomEnergy, ItsParameterErrorsAreInputErrors) {
