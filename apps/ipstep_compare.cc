@@ -15,9 +15,8 @@
 #include <vector>
 
 #include <gflags/gflags.h>
-#include <glog/logging.h>
 
-#include "apps/command_line.h"
+#include "apps/program_main.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
 #include "problems/scene_loader.h"
@@ -151,20 +150,7 @@ int Run() {
 }  // namespace ipstep
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage("ipstep_compare --scene=NAME|FILE [--dt --steps --tolerance ...]");
-  FLAGS_logtostderr = true;
-  try {
-    ipstep::CheckCommandLine(argc, argv);
-  } catch (const ipstep::InputError& e) {
-    std::fprintf(stderr, "ipstep_compare: error: %s\n", e.what());
-    return ipstep::kInputErrorExitCode;
-  }
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
-  google::InitGoogleLogging(argv[0]);
-  try {
-    return ipstep::Run();
-  } catch (const ipstep::InputError& e) {
-    std::fprintf(stderr, "ipstep_compare: error: %s\n", e.what());
-    return ipstep::kInputErrorExitCode;
-  }
+  return ipstep::ProgramMain(argc, argv, "ipstep_compare",
+                             "ipstep_compare --scene=NAME|FILE [--dt --steps --tolerance ...]",
+                             ipstep::Run);
 }

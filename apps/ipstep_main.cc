@@ -10,7 +10,7 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
-#include "apps/command_line.h"
+#include "apps/program_main.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
 #include "io/positions_writer.h"
@@ -121,22 +121,8 @@ int Run() {
 }  // namespace ipstep
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
-      "ipstep --scene=NAME|FILE --integrator=... --optimizer=... [--dt --steps --stats ...]");
-  FLAGS_logtostderr = true;
-  // Quiet by default: -v=1 logs every step, -v=2 every optimizer iteration.
-  try {
-    ipstep::CheckCommandLine(argc, argv);
-  } catch (const ipstep::InputError& e) {
-    std::fprintf(stderr, "ipstep: error: %s\n", e.what());
-    return ipstep::kInputErrorExitCode;
-  }
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
-  google::InitGoogleLogging(argv[0]);
-  try {
-    return ipstep::Run();
-  } catch (const ipstep::InputError& e) {
-    std::fprintf(stderr, "ipstep: error: %s\n", e.what());
-    return ipstep::kInputErrorExitCode;
-  }
+  return ipstep::ProgramMain(
+      argc, argv, "ipstep",
+      "ipstep --scene=NAME|FILE --integrator=... --optimizer=... [--dt --steps --stats ...]",
+      ipstep::Run);
 }

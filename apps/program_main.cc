@@ -1,0 +1,28 @@
+#include "apps/program_main.h"
+
+#include <cstdio>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include "apps/command_line.h"
+#include "core/input_error.h"
+
+namespace ipstep {
+
+int ProgramMain(int argc, char** argv, const char* program, const char* usage,
+                const std::function<int()>& run) {
+  gflags::SetUsageMessage(usage);
+  FLAGS_logtostderr = true;
+  try {
+    CheckCommandLine(argc, argv);
+    gflags::ParseCommandLineFlags(&argc, &argv, true);
+    google::InitGoogleLogging(argv[0]);
+    return run();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return kInputErrorExitCode;
+  }
+}
+
+}  // namespace ipstep
