@@ -1,8 +1,10 @@
-// Registration of the built-in effects: gravity, springs, damping.
+// Registration of the built-in effects: gravity, springs, damping, and the
+// contact effects (contact/contact_effects.h).
 #include <array>
 #include <cmath>
 #include <sstream>
 
+#include "contact/contact_effects.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "energies/gravity_potential.h"
@@ -124,7 +126,9 @@ void RegisterBuiltinEffects(EffectRegistry* registry) {
   registry->Register("springs", "spring networks: hookean, squared_strain, quartic", BuildSprings);
   registry->Register("damping", "Rayleigh dissipation, mass- and stiffness-proportional",
                      BuildDamping);
-  registry->builtin_ = registry->Names();
+  registry->loader_native_ = registry->Names();
+  // Contact and friction: parameters from their own scene objects (contact/).
+  RegisterContactEffects(registry);
 }
 
 }  // namespace ipstep

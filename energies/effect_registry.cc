@@ -37,7 +37,7 @@ std::set<std::string> EffectRegistry::Names() const {
 std::set<std::string> EffectRegistry::UserNames() const {
   std::set<std::string> names;
   for (const auto& [name, info] : effects_) {
-    if (!builtin_.count(name)) names.insert(name);
+    if (!loader_native_.count(name)) names.insert(name);
   }
   return names;
 }

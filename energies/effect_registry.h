@@ -37,12 +37,14 @@ class EffectRegistry {
   bool Has(const std::string& name) const;
   const EffectInfo& Get(const std::string& name) const;
   std::set<std::string> Names() const;
-  // Names other than the built-in ones (accepted as extra scene effects).
+  // Effects whose parameters are a top-level scene object under the effect's
+  // name: every effect but gravity, springs and damping, which the scene loader
+  // reads natively. Pass them as SceneLoadOptions::extra_effects.
   std::set<std::string> UserNames() const;
 
  private:
   std::map<std::string, EffectInfo> effects_;
-  std::set<std::string> builtin_;
+  std::set<std::string> loader_native_;  // gravity, springs, damping
   friend void RegisterBuiltinEffects(EffectRegistry* registry);
 };
 

@@ -181,6 +181,14 @@ StepReport Simulation::Step() {
     }
   }
   ApplyBoundaryConditions(t_next, &state_.x);
+  // Explicit steps have no step filter protecting them: check the state.
+  if (!integrator_->is_variational() && report.converged && potential_->has_step_filters()) {
+    potential_->NotifyAccepted(state_.x.data());
+    if (!potential_->IsFeasible(state_.x.data())) {
+      report.converged = false;
+      report.status = "infeasible state after the step (penetration)";
+    }
+  }
   for (int i = 0; i < state_.num_nodes(); ++i) {
     if (state_.is_free(i)) continue;
     state_.v.segment(dim * i, dim) = state_.prescribed_velocity.segment(dim * i, dim);

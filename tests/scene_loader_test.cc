@@ -1,4 +1,5 @@
 #include "problems/scene_loader.h"
+#include "energies/effect_registry.h"
 
 #include <cmath>
 #include <cstdio>
@@ -93,11 +94,14 @@ std::vector<double> VelocityOf(const Scene& scene, int node) {
 
 TEST(BuiltinScenesTest, NamesAndTexts) {
   EXPECT_EQ(BuiltinSceneNames(),
-            (std::set<std::string>{"cloth", "fpu", "oscillator", "spring_pendulum"}));
+            (std::set<std::string>{"cloth", "cloth_sphere", "drop", "fpu", "impact", "oscillator",
+                                   "slope", "spring_pendulum", "squeeze", "two_squares"}));
+  SceneLoadOptions options;
+  options.extra_effects = EffectRegistry::Global().UserNames();  // contact, friction
   for (const std::string& name : BuiltinSceneNames()) {
     EXPECT_TRUE(IsBuiltinScene(name));
     EXPECT_FALSE(BuiltinSceneText(name).empty());
-    const Scene scene = LoadScene(name);
+    const Scene scene = LoadScene(name, options);
     EXPECT_EQ(scene.name, name);
     EXPECT_EQ(scene.source, "problems/" + name + ".json");
     EXPECT_EQ(scene.positions.size(), scene.velocities.size());
@@ -806,7 +810,10 @@ TEST(BadInputTest, UnreadableFiles) {
 TEST(BadInputTest, UnknownBuiltinName) {
   std::string message = InputErrorOf([] { LoadScene("no_such_scene"); });
   EXPECT_NE(message.find("no_such_scene"), std::string::npos) << message;
-  EXPECT_NE(message.find("cloth, fpu, oscillator, spring_pendulum"), std::string::npos) << message;
+  EXPECT_NE(message.find("cloth, cloth_sphere, drop, fpu, impact, oscillator, slope, "
+                         "spring_pendulum, squeeze, two_squares"),
+            std::string::npos)
+      << message;
   message = InputErrorOf([] { BuiltinSceneText("no_such_scene"); });
   EXPECT_NE(message.find("unknown built-in scene"), std::string::npos) << message;
 }

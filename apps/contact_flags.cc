@@ -1,0 +1,63 @@
+#include "apps/contact_flags.h"
+
+#include <cmath>
+#include <string>
+
+#include "contact/contact_overrides.h"
+#include "core/input_error.h"
+
+DEFINE_double(contact_kappa, 0.0,
+              "Fixed barrier stiffness kappa for scenes with contact (> 0); 0: the scene's "
+              "(adaptive when the scene gives none)");
+DEFINE_double(contact_dhat, 0.0, "Barrier activation distance d_hat [m] (> 0); 0: the scene's");
+DEFINE_double(friction_mu, 0.0,
+              "Friction coefficient (>= 0) for scenes with friction; default: the scene's");
+DEFINE_int32(friction_iterations, 0,
+             "Friction lag iterations per step (>= 1); 0: the scene's (default 1)");
+
+namespace ipstep {
+namespace {
+
+bool IsDefault(const char* name) {
+  gflags::CommandLineFlagInfo info;
+  gflags::GetCommandLineFlagInfo(name, &info);
+  return info.is_default;
+}
+
+ContactOverrides OverridesFromFlags() {
+  ContactOverrides o;
+  if (!IsDefault("contact_kappa")) {
+    if (!std::isfinite(FLAGS_contact_kappa) || !(FLAGS_contact_kappa > 0.0)) {
+      throw InputError("flag", "--contact_kappa", "must be a finite number > 0");
+    }
+    o.kappa = FLAGS_contact_kappa;
+  }
+  if (!IsDefault("contact_dhat")) {
+    if (!std::isfinite(FLAGS_contact_dhat) || !(FLAGS_contact_dhat > 0.0)) {
+      throw InputError("flag", "--contact_dhat", "must be a finite number > 0");
+    }
+    o.d_hat = FLAGS_contact_dhat;
+  }
+  if (!IsDefault("friction_mu")) {
+    if (!std::isfinite(FLAGS_friction_mu) || !(FLAGS_friction_mu >= 0.0)) {
+      throw InputError("flag", "--friction_mu", "must be a finite number >= 0");
+    }
+    o.mu = FLAGS_friction_mu;
+  }
+  if (!IsDefault("friction_iterations")) {
+    if (FLAGS_friction_iterations < 1 || FLAGS_friction_iterations > 100) {
+      throw InputError("flag", "--friction_iterations", "must be an integer in [1, 100]");
+    }
+    o.friction_iterations = FLAGS_friction_iterations;
+  }
+  return o;
+}
+
+// Installed before main(): the flags are read when a scene's effects are built.
+const bool kInstalled = [] {
+  SetContactOverridesProvider(OverridesFromFlags);
+  return true;
+}();
+
+}  // namespace
+}  // namespace ipstep

@@ -1,0 +1,32 @@
+// Which nodes and edges take part in contact, and their weights, derived from
+// the scene's nodes and springs.
+//
+// 2D: every connected component of the spring graph is a body; its contact
+// boundary is the OUTER boundary of the drawn spring network, traced by walking
+// around it (at each node the next edge is the first one counterclockwise from
+// the edge we came along, starting rightwards from the lowest node). Springs
+// crossing inside (shear diagonals) do not matter; holes are not traced. A node
+// without springs is a body of its own (a particle). Weight of a boundary node:
+// half the length of its two boundary edges (its share of the boundary length);
+// 1 for a particle.
+// 3D: every node is a contact node (cloth, particles); weight: the node's area,
+// approximated as the square of its shortest spring (exact, a^2, inside a square
+// grid of spacing a); 1 for a node without springs.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "problems/scene.h"
+
+namespace ipstep {
+
+struct ContactSurface {
+  std::vector<int> nodes;                 // contact nodes, ascending
+  std::vector<double> weights;            // per entry of `nodes`
+  std::vector<std::array<int, 2>> edges;  // 2D boundary edges (both nodes in `nodes`)
+};
+
+ContactSurface BuildContactSurface(const Scene& scene);
+
+}  // namespace ipstep

@@ -1,0 +1,116 @@
+#include "contact/contact_terms.h"
+
+#include "contact/point_edge.h"
+
+namespace ipstep {
+
+PointObstacleGap::PointObstacleGap(int dimension, const Obstacle* obstacle, const double* time,
+                                   double d_hat, double min_distance)
+    : dimension_(dimension),
+      obstacle_(obstacle),
+      time_(time),
+      d_hat_(d_hat),
+      min_distance_(min_distance) {
+  set_num_residuals(1);
+  mutable_parameter_block_sizes()->push_back(dimension);
+}
+
+bool PointObstacleGap::Evaluate(double const* const* x, double* residuals,
+                                double** jacobians) const {
+  Eigen::Vector3d gradient;
+  const double d = obstacle_->Distance(ToPoint(x[0], dimension_), *time_, &gradient);
+  if (!(d > min_distance_)) return false;
+  const double u = d_hat_ - d;
+  const bool active = u > 0.0;
+  residuals[0] = active ? u : 0.0;
+  if (jacobians != nullptr && jacobians[0] != nullptr) {
+    for (int k = 0; k < dimension_; ++k) jacobians[0][k] = active ? -gradient[k] : 0.0;
+  }
+  return true;
+}
+
+PointEdgeGap::PointEdgeGap(double d_hat, double min_distance)
+    : d_hat_(d_hat), min_distance_(min_distance) {
+  set_num_residuals(1);
+  for (int b = 0; b < 3; ++b) mutable_parameter_block_sizes()->push_back(2);
+}
+
+bool PointEdgeGap::Evaluate(double const* const* x, double* residuals, double** jacobians) const {
+  const Eigen::Vector2d p(x[0][0], x[0][1]), a(x[1][0], x[1][1]), b(x[2][0], x[2][1]);
+  const PointEdgeDistanceResult r = PointEdgeDistance(p, a, b);
+  if (!(r.distance > min_distance_)) return false;
+  const double u = d_hat_ - r.distance;
+  const bool active = u > 0.0;
+  residuals[0] = active ? u : 0.0;
+  if (jacobians != nullptr) {
+    const Eigen::Vector2d* grads[3] = {&r.grad_p, &r.grad_a, &r.grad_b};
+    for (int block = 0; block < 3; ++block) {
+      if (jacobians[block] == nullptr) continue;
+      for (int k = 0; k < 2; ++k) jacobians[block][k] = active ? -(*grads[block])[k] : 0.0;
+    }
+  }
+  return true;
+}
+
+ObstacleFriction::ObstacleFriction(const StepContext* context, int node,
+                                   const Eigen::Matrix3d& tangents,
+                                   const Eigen::Vector3d& obstacle_velocity)
+    : context_(context),
+      node_(node),
+      dimension_(context->dimension),
+      tangents_(tangents),
+      obstacle_velocity_(obstacle_velocity) {
+  set_num_residuals(dimension_ - 1);
+  mutable_parameter_block_sizes()->push_back(dimension_);
+}
+
+bool ObstacleFriction::Evaluate(double const* const* x, double* residuals,
+                                double** jacobians) const {
+  double v[3] = {0.0, 0.0, 0.0};
+  context_->Velocity(node_, x[0], v);
+  const int m = dimension_ - 1;
+  for (int j = 0; j < m; ++j) {
+    double r = 0.0;
+    for (int k = 0; k < dimension_; ++k) r += tangents_(k, j) * (v[k] - obstacle_velocity_[k]);
+    residuals[j] = r;
+  }
+  if (jacobians != nullptr && jacobians[0] != nullptr) {
+    for (int j = 0; j < m; ++j) {
+      for (int k = 0; k < dimension_; ++k) {
+        jacobians[0][j * dimension_ + k] = context_->velocity_slope * tangents_(k, j);
+      }
+    }
+  }
+  return true;
+}
+
+EdgeFriction::EdgeFriction(const StepContext* context, int p, int a, int b,
+                           const Eigen::Vector2d& tangent, double alpha)
+    : context_(context),
+      nodes_{p, a, b},
+      tangent_(tangent),
+      coefficients_{1.0, -(1.0 - alpha), -alpha} {
+  set_num_residuals(1);
+  for (int block = 0; block < 3; ++block) mutable_parameter_block_sizes()->push_back(2);
+}
+
+bool EdgeFriction::Evaluate(double const* const* x, double* residuals, double** jacobians) const {
+  double r = 0.0;
+  for (int block = 0; block < 3; ++block) {
+    double v[2];
+    context_->Velocity(nodes_[block], x[block], v);
+    r += coefficients_[block] * (tangent_[0] * v[0] + tangent_[1] * v[1]);
+  }
+  residuals[0] = r;
+  if (jacobians != nullptr) {
+    for (int block = 0; block < 3; ++block) {
+      if (jacobians[block] == nullptr) continue;
+      for (int k = 0; k < 2; ++k) {
+        jacobians[block][k] = coefficients_[block] * context_->velocity_slope * tangent_[k];
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace ipstep

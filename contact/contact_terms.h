@@ -1,0 +1,80 @@
+// Ceres cost functions of the contact terms (analytic Jacobians).
+//
+// Gap terms (barrier, kind kPotential, with a BarrierLoss): one residual
+//   u = max(d_hat - d(x), 0)
+// where d is the point-obstacle or point-edge distance. Evaluation fails
+// (returns false) when d <= min_distance: the point is in (or touching) the
+// obstacle, so the trial point is infeasible. Beyond d_hat the residual and its
+// Jacobian are zero, so terms of pairs out of reach cost nothing.
+//
+// Friction terms (kind kDissipation, with a FrictionLoss): the relative
+// tangential velocity v_t = T^T v_rel (dimension - 1 residuals), with the
+// velocity map of the step context v(x) = v_base + slope (x - x_base).
+#pragma once
+
+#include <ceres/cost_function.h>
+#include <Eigen/Core>
+
+#include "contact/obstacle.h"
+#include "core/step_context.h"
+
+namespace ipstep {
+
+class PointObstacleGap : public ceres::CostFunction {
+ public:
+  // `time`: the obstacle time to evaluate at, read at every evaluation.
+  PointObstacleGap(int dimension, const Obstacle* obstacle, const double* time, double d_hat,
+                   double min_distance);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  int dimension_;
+  const Obstacle* obstacle_;
+  const double* time_;
+  double d_hat_;
+  double min_distance_;
+};
+
+// 2D: point p (block 0) against the edge [a, b] (blocks 1, 2).
+class PointEdgeGap : public ceres::CostFunction {
+ public:
+  PointEdgeGap(double d_hat, double min_distance);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  double d_hat_;
+  double min_distance_;
+};
+
+// Node against an obstacle: v_t = T^T (v(x_node) - v_obstacle). The columns of
+// `tangents` (dimension - 1 of them) are the lagged tangent basis.
+class ObstacleFriction : public ceres::CostFunction {
+ public:
+  ObstacleFriction(const StepContext* context, int node, const Eigen::Matrix3d& tangents,
+                   const Eigen::Vector3d& obstacle_velocity);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  const StepContext* context_;
+  int node_;
+  int dimension_;
+  Eigen::Matrix3d tangents_;
+  Eigen::Vector3d obstacle_velocity_;
+};
+
+// 2D point p against edge [a, b]: v_t = t . (v_p - (1 - alpha) v_a - alpha v_b),
+// with the lagged unit tangent t and closest-point parameter alpha.
+class EdgeFriction : public ceres::CostFunction {
+ public:
+  EdgeFriction(const StepContext* context, int p, int a, int b, const Eigen::Vector2d& tangent,
+               double alpha);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  const StepContext* context_;
+  int nodes_[3];
+  Eigen::Vector2d tangent_;
+  double coefficients_[3];
+};
+
+}  // namespace ipstep

@@ -1,0 +1,329 @@
+// Contact building blocks against finite differences and closed forms: the IPC
+// barrier and its loss-function form, the friction mollifier and loss, obstacle
+// and point-edge distances and their gradients, continuous collision detection,
+// the spatial hash, and the Jacobians of the contact cost functions. Every
+// finite-difference probe stays inside the barrier's domain d > 0.
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "contact/barrier.h"
+#include "contact/contact_terms.h"
+#include "contact/friction.h"
+#include "contact/obstacle.h"
+#include "contact/point_edge.h"
+#include "contact/spatial_hash.h"
+
+namespace ipstep {
+namespace {
+
+// Central difference of f at x with step h.
+template <class F>
+double Derivative(const F& f, double x, double h) {
+  return (f(x + h) - f(x - h)) / (2.0 * h);
+}
+
+TEST(Barrier, DerivativesMatchFiniteDifferences) {
+  const double d_hat = 0.01;
+  for (double ratio : {1e-4, 1e-3, 0.01, 0.1, 0.3, 0.5, 0.9, 0.99}) {
+    const double d = ratio * d_hat;
+    const double h = 1e-4 * std::min(d, d_hat - d);  // probes stay in (0, d_hat)
+    const double b1 = Derivative([&](double t) { return Barrier(t, d_hat); }, d, h);
+    const double b2 = Derivative([&](double t) { return BarrierDerivative(t, d_hat); }, d, h);
+    EXPECT_NEAR(BarrierDerivative(d, d_hat), b1, 1e-6 * std::abs(b1) + 1e-9 * d_hat) << ratio;
+    EXPECT_NEAR(BarrierSecondDerivative(d, d_hat), b2, 1e-6 * std::abs(b2)) << ratio;
+    EXPECT_LT(BarrierDerivative(d, d_hat), 0.0);
+    EXPECT_GT(BarrierSecondDerivative(d, d_hat), 0.0);
+  }
+  EXPECT_EQ(Barrier(d_hat, d_hat), 0.0);
+  EXPECT_EQ(Barrier(2 * d_hat, d_hat), 0.0);
+  EXPECT_EQ(BarrierDerivative(d_hat, d_hat), 0.0);
+  EXPECT_TRUE(std::isinf(Barrier(0.0, d_hat)));
+  // C^2 at d_hat: B'' -> 0 from below.
+  EXPECT_LT(BarrierSecondDerivative(d_hat * (1 - 1e-6), d_hat), 1e-5);
+}
+
+TEST(Barrier, LossGivesTheBarrierAndItsExactCurvature) {
+  const double d_hat = 0.01, weight = 0.25, kappa = 1e5;
+  const BarrierLoss loss(d_hat, weight, &kappa);
+  for (double ratio : {1e-6, 1e-3, 0.05, 0.5, 0.95}) {
+    const double d = ratio * d_hat, u = d_hat - d, s = u * u;
+    double rho[3];
+    loss.Evaluate(s, rho);
+    const double b = kappa * weight * Barrier(d, d_hat);
+    EXPECT_NEAR(0.5 * rho[0], b, 1e-10 * b) << ratio;
+    EXPECT_GT(rho[1], 0.0);
+    EXPECT_GT(rho[2], 0.0);
+    // Ceres's corrector: rho' + 2 s rho'' = b''(d).
+    const double b2 = kappa * weight * BarrierSecondDerivative(d, d_hat);
+    EXPECT_NEAR(rho[1] + 2 * s * rho[2], b2, 1e-9 * b2) << ratio;
+    // rho' and rho'' against differences in s (probes keep d > 0).
+    const double hs = 1e-5 * std::min(s, d_hat * d_hat - s) + 1e-30;
+    auto rho0 = [&](double t) {
+      double r[3];
+      loss.Evaluate(t, r);
+      return r[0];
+    };
+    auto rho1 = [&](double t) {
+      double r[3];
+      loss.Evaluate(t, r);
+      return r[1];
+    };
+    if (ratio > 1e-3) {
+      EXPECT_NEAR(rho[1], Derivative(rho0, s, hs), 1e-5 * rho[1]) << ratio;
+      EXPECT_NEAR(rho[2], Derivative(rho1, s, hs), 1e-5 * rho[2]) << ratio;
+    }
+  }
+  double rho[3];
+  loss.Evaluate(0.0, rho);
+  EXPECT_EQ(rho[0], 0.0);
+  EXPECT_EQ(rho[1], 0.0);
+  EXPECT_EQ(rho[2], 0.0);
+}
+
+TEST(Friction, MollifierAndLossMatchFiniteDifferences) {
+  const double eps = 1e-3;
+  for (double y : {1e-5, 2e-4, 5e-4, 9e-4, 1.5e-3, 0.1}) {
+    const double h = 1e-4 * y;
+    EXPECT_NEAR(FrictionF1(y, eps), Derivative([&](double t) { return FrictionF0(t, eps); }, y, h),
+                1e-6);
+  }
+  // C^1 at eps_v and f1 in [0, 1].
+  EXPECT_NEAR(FrictionF0(eps * (1 - 1e-9), eps), FrictionF0(eps, eps), 1e-12);
+  EXPECT_NEAR(FrictionF1(eps * (1 - 1e-9), eps), 1.0, 1e-8);
+  EXPECT_EQ(FrictionF0(0.0, eps), 0.0);
+
+  const double scale = 3.0;
+  const FrictionLoss loss(scale, eps);
+  for (double y : {1e-4, 5e-4, 2e-3, 0.5}) {
+    const double s = y * y;
+    double rho[3];
+    loss.Evaluate(s, rho);
+    EXPECT_NEAR(0.5 * rho[0], scale * FrictionF0(y, eps), 1e-12 * (1 + rho[0]));
+    EXPECT_NEAR(rho[1], scale * FrictionF1(y, eps) / y, 1e-9 * rho[1]);
+    EXPECT_GT(rho[1], 0.0);
+    EXPECT_LE(rho[2], 0.0);
+    const double hs = 1e-5 * s;
+    auto r0 = [&](double t) {
+      double r[3];
+      loss.Evaluate(t, r);
+      return r[0];
+    };
+    auto r1 = [&](double t) {
+      double r[3];
+      loss.Evaluate(t, r);
+      return r[1];
+    };
+    EXPECT_NEAR(rho[1], Derivative(r0, s, hs), 1e-5 * rho[1]);
+    EXPECT_NEAR(rho[2], Derivative(r1, s, hs), 1e-5 * std::abs(rho[2]));
+  }
+}
+
+Obstacle Plane2D() {
+  Obstacle o;
+  o.type = ObstacleType::kPlane;
+  o.point = Eigen::Vector3d(0, -1, 0);
+  o.normal = Eigen::Vector3d(0.1, 1, 0).normalized();
+  return o;
+}
+
+Obstacle Sphere(int dimension) {
+  Obstacle o;
+  o.type = ObstacleType::kSphere;
+  o.dimension = dimension;
+  o.point = Eigen::Vector3d(0.2, -0.1, dimension == 3 ? 0.3 : 0.0);
+  o.radius = 0.5;
+  o.velocity = Eigen::Vector3d(0.3, -0.2, 0.0);
+  return o;
+}
+
+Obstacle Box(int dimension) {
+  Obstacle o;
+  o.type = ObstacleType::kBox;
+  o.dimension = dimension;
+  o.lower = Eigen::Vector3d(-1, -0.5, dimension == 3 ? -0.2 : 0.0);
+  o.upper = Eigen::Vector3d(1, 0.5, dimension == 3 ? 0.2 : 0.0);
+  return o;
+}
+
+TEST(Obstacle, DistanceGradientsMatchFiniteDifferences) {
+  const std::vector<Obstacle> obstacles = {Plane2D(), Sphere(2), Sphere(3), Box(2), Box(3)};
+  const std::vector<Eigen::Vector3d> points = {Eigen::Vector3d(0.3, 0.9, 0.0),
+                                               Eigen::Vector3d(1.7, 0.8, 0.0),
+                                               Eigen::Vector3d(-1.3, -0.7, 0.6)};
+  const double t = 0.4;
+  for (const Obstacle& o : obstacles) {
+    for (Eigen::Vector3d p : points) {
+      if (o.dimension == 2) p[2] = 0.0;
+      Eigen::Vector3d g;
+      const double d = o.Distance(p, t, &g);
+      ASSERT_GT(d, 0.0);
+      for (int k = 0; k < o.dimension; ++k) {
+        const double h = 1e-6;
+        const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(k);
+        const double fd = (o.Distance(p + e, t) - o.Distance(p - e, t)) / (2 * h);
+        EXPECT_NEAR(g[k], fd, 1e-7) << ObstacleTypeName(o.type) << " " << k;
+      }
+    }
+  }
+  // Closed forms.
+  EXPECT_NEAR(Box(2).Distance(Eigen::Vector3d(2, 1.5, 0), 0), std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(Box(2).Distance(Eigen::Vector3d(0.9, 0, 0), 0), -0.1, 1e-15);
+  EXPECT_NEAR(Sphere(2).Distance(Eigen::Vector3d(0.2 + 0.3, -0.1 - 0.2 + 1.0, 0), 1.0), 0.5, 1e-15);
+}
+
+TEST(Obstacle, ContinuousCollisionDetection) {
+  Obstacle ground;
+  ground.point = Eigen::Vector3d(0, 0, 0);
+  ground.normal = Eigen::Vector3d(0, 1, 0);
+  // From y = 1 to y = -3 crosses y = 0 at s = 0.25.
+  EXPECT_NEAR(ground.TimeOfImpact({0, 1, 0}, {0, -3, 0}, 0, 0, 0), 0.25, 1e-15);
+  EXPECT_GT(ground.TimeOfImpact({0, 1, 0}, {0, 0.5, 0}, 0, 0, 0), 1.0);
+  // A moving ceiling catches a point at rest: y = 1 - 2 t reaches y = 0.5 at t = 0.25.
+  Obstacle ceiling;
+  ceiling.point = Eigen::Vector3d(0, 1, 0);
+  ceiling.normal = Eigen::Vector3d(0, -1, 0);
+  ceiling.velocity = Eigen::Vector3d(0, -2, 0);
+  EXPECT_NEAR(ceiling.TimeOfImpact({0, 0.5, 0}, {0, 0.5, 0}, 0.0, 1.0, 0), 0.25, 1e-15);
+  // Sphere: a point passing straight through the centre enters at the radius.
+  Obstacle sphere = Sphere(2);
+  sphere.velocity.setZero();
+  const Eigen::Vector3d c = sphere.point;
+  EXPECT_NEAR(
+      sphere.TimeOfImpact(c + Eigen::Vector3d(-2, 0, 0), c + Eigen::Vector3d(2, 0, 0), 0, 0, 0),
+      1.5 / 4.0, 1e-14);
+  // A tangent path that misses.
+  EXPECT_GT(
+      sphere.TimeOfImpact(c + Eigen::Vector3d(-2, 0.6, 0), c + Eigen::Vector3d(2, 0.6, 0), 0, 0, 0),
+      1.0);
+  // Box: a fast point through a thin wall (x in [-1e-3, 1e-3]) is caught.
+  Obstacle wall;
+  wall.type = ObstacleType::kBox;
+  wall.lower = Eigen::Vector3d(-1e-3, -1, 0);
+  wall.upper = Eigen::Vector3d(1e-3, 1, 0);
+  EXPECT_NEAR(wall.TimeOfImpact({-1, 0, 0}, {1, 0, 0}, 0, 0, 0), (1 - 1e-3) / 2, 1e-15);
+  EXPECT_GT(wall.TimeOfImpact({-1, 1.5, 0}, {1, 1.5, 0}, 0, 0, 0), 1.0);
+  // The margin grows the obstacle.
+  EXPECT_NEAR(ground.TimeOfImpact({0, 1, 0}, {0, -1, 0}, 0, 0, 0.5), 0.25, 1e-15);
+}
+
+TEST(PointEdge, DistanceGradientsMatchFiniteDifferences) {
+  const Eigen::Vector2d a(0.1, -0.2), b(1.3, 0.4);
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.5, 0.7), Eigen::Vector2d(0.9, -0.5),
+                                   Eigen::Vector2d(-0.6, -0.1), Eigen::Vector2d(2.0, 1.0)}) {
+    const PointEdgeDistanceResult r = PointEdgeDistance(p, a, b);
+    ASSERT_GT(r.distance, 0.0);
+    Eigen::Matrix<double, 6, 1> x;
+    x << p, a, b;
+    Eigen::Matrix<double, 6, 1> g;
+    g << r.grad_p, r.grad_a, r.grad_b;
+    for (int k = 0; k < 6; ++k) {
+      const double h = 1e-7;
+      Eigen::Matrix<double, 6, 1> xp = x, xm = x;
+      xp[k] += h;
+      xm[k] -= h;
+      const double fd =
+          (PointEdgeDistance(xp.segment<2>(0), xp.segment<2>(2), xp.segment<2>(4)).distance -
+           PointEdgeDistance(xm.segment<2>(0), xm.segment<2>(2), xm.segment<2>(4)).distance) /
+          (2 * h);
+      EXPECT_NEAR(g[k], fd, 1e-7) << k;
+    }
+  }
+}
+
+TEST(PointEdge, ContinuousCollisionDetection) {
+  const Eigen::Vector2d a(0, 0), b(1, 0);
+  // A point fired through the edge from y = 1 to y = -1 crosses at s = 0.5.
+  EXPECT_NEAR(PointEdgeTimeOfImpact({0.5, 1}, {0.5, -1}, a, a, b, b), 0.5, 1e-15);
+  // Passing beside the edge: no impact.
+  EXPECT_GT(PointEdgeTimeOfImpact({1.5, 1}, {1.5, -1}, a, a, b, b), 1.0);
+  // The edge moves up into a resting point.
+  EXPECT_NEAR(PointEdgeTimeOfImpact({0.5, 1}, {0.5, 1}, {0, 0}, {0, 4}, {1, 0}, {1, 4}), 0.25,
+              1e-15);
+  // A rotating edge sweeps a point.
+  const double s = PointEdgeTimeOfImpact({0.5, 0.5}, {0.5, 0.5}, {0, 0}, {0, 0}, {1, 0}, {0, 1});
+  EXPECT_LE(s, 1.0);
+  EXPECT_TRUE(SegmentsIntersect({0, 0}, {1, 1}, {0, 1}, {1, 0}));
+  EXPECT_FALSE(SegmentsIntersect({0, 0}, {1, 0}, {0, 1}, {1, 1}));
+}
+
+TEST(SpatialHash, FindsOverlapsOnly) {
+  SpatialHash hash(2, 0.1);
+  hash.Insert(0, {0, 0, 0}, {0.05, 0.05, 0});
+  hash.Insert(1, {1, 1, 0}, {1.05, 1.05, 0});
+  hash.Insert(2, {-1e9, 0, 0}, {1e9, 0.01, 0});  // oversized: always a candidate
+  std::vector<int> ids;
+  hash.Query({0.01, 0.01, 0}, {0.02, 0.02, 0}, &ids);
+  EXPECT_EQ(ids, (std::vector<int>{0, 2}));
+  hash.Query({0.5, 0.5, 0}, {0.52, 0.52, 0}, &ids);
+  EXPECT_EQ(ids, (std::vector<int>{2}));
+}
+
+// Jacobian of a cost function against central differences, block by block.
+void CheckJacobian(const ceres::CostFunction& cost, std::vector<std::vector<double>> x,
+                   double h = 1e-7, double tolerance = 1e-6) {
+  const int m = cost.num_residuals();
+  const auto& sizes = cost.parameter_block_sizes();
+  std::vector<const double*> parameters;
+  for (auto& block : x) parameters.push_back(block.data());
+  std::vector<double> r(m), rp(m), rm(m);
+  std::vector<std::vector<double>> jac(sizes.size());
+  std::vector<double*> jac_ptrs;
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    jac[b].resize(m * sizes[b]);
+    jac_ptrs.push_back(jac[b].data());
+  }
+  ASSERT_TRUE(cost.Evaluate(parameters.data(), r.data(), jac_ptrs.data()));
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    for (int k = 0; k < sizes[b]; ++k) {
+      const double saved = x[b][k];
+      x[b][k] = saved + h;
+      ASSERT_TRUE(cost.Evaluate(parameters.data(), rp.data(), nullptr));
+      x[b][k] = saved - h;
+      ASSERT_TRUE(cost.Evaluate(parameters.data(), rm.data(), nullptr));
+      x[b][k] = saved;
+      for (int i = 0; i < m; ++i) {
+        EXPECT_NEAR(jac[b][i * sizes[b] + k], (rp[i] - rm[i]) / (2 * h), tolerance)
+            << "block " << b << " coordinate " << k << " residual " << i;
+      }
+    }
+  }
+}
+
+TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
+  const double d_hat = 0.05, time = 0.3;
+  const Obstacle sphere = Sphere(3);
+  // A point 0.02 from the moving sphere's surface: inside the barrier's reach.
+  const Eigen::Vector3d centre = sphere.point + sphere.velocity * time;
+  const Eigen::Vector3d p = centre + (sphere.radius + 0.02) * Eigen::Vector3d(0.6, 0.0, 0.8);
+  PointObstacleGap gap(3, &sphere, &time, d_hat, 0.0);
+  CheckJacobian(gap, {{p[0], p[1], p[2]}});
+  double residual;
+  const double* x[1] = {p.data()};
+  ASSERT_TRUE(gap.Evaluate(x, &residual, nullptr));
+  EXPECT_NEAR(residual, d_hat - 0.02, 1e-14);
+  // Inside the obstacle: the evaluation fails.
+  const Eigen::Vector3d inside = centre;
+  const double* y[1] = {inside.data()};
+  EXPECT_FALSE(gap.Evaluate(y, &residual, nullptr));
+
+  PointEdgeGap edge_gap(d_hat, 0.0);
+  CheckJacobian(edge_gap, {{0.4, 0.03}, {0.0, 0.0}, {1.0, 0.01}});
+
+  StepContext context;
+  context.Resize(2, 3);
+  context.velocity_slope = 50.0;
+  context.x_base << 0.1, 0.2, 0.3, 0.4, 0.5, 0.6;
+  context.v_base << 1, 2, 3, 4, 5, 6;
+  Eigen::Matrix3d tangents = Eigen::Matrix3d::Zero();
+  tangents.col(0) = Eigen::Vector3d(0.6, 0.8, 0);
+  ObstacleFriction friction(&context, 1, tangents, Eigen::Vector3d(0.5, 0, 0));
+  CheckJacobian(friction, {{0.31, 0.42}});
+  EdgeFriction edge_friction(&context, 0, 1, 2, Eigen::Vector2d(1, 0), 0.3);
+  CheckJacobian(edge_friction, {{0.11, 0.2}, {0.3, 0.41}, {0.52, 0.6}});
+}
+
+}  // namespace
+}  // namespace ipstep

@@ -1,0 +1,324 @@
+// Contact in whole simulations: no accepted iterate and no step ever has a
+// penetration, on every contact scene with backward Euler and Newmark and with
+// Newton and L-BFGS; fast particles are stopped by thin walls and by edges; the
+// slope threshold of dry friction; energy never increases over a backward-Euler
+// step of a closed system with contact and friction; bad contact parameters are
+// input errors.
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "contact/contact_manager.h"
+#include "core/input_error.h"
+#include "energies/effect_registry.h"
+#include "problems/scene_loader.h"
+#include "sim/simulation.h"
+#include "tests/test_scenes.h"
+
+namespace ipstep {
+namespace {
+
+using nlohmann::json;
+
+// Records the smallest gap (over every pair, at the obstacles' current time) at
+// every iterate any optimiser accepts.
+struct ProbeRecord {
+  double min_gap = std::numeric_limits<double>::infinity();
+  long accepted = 0;
+  bool nan = false;
+};
+ProbeRecord g_probe;
+
+class GapProbe : public StepFilter {
+ public:
+  explicit GapProbe(const ContactManager* manager) : manager_(manager) {}
+  void OnAccepted(const double* x) override {
+    const double gap = manager_->MinDistance(x, std::numeric_limits<double>::infinity());
+    if (std::isnan(gap)) g_probe.nan = true;
+    g_probe.min_gap = std::min(g_probe.min_gap, gap);
+    ++g_probe.accepted;
+  }
+  bool IsStepValid(const double*) const override { return true; }
+  double MaxStepSize(const double*, const double*) const override { return 1.0; }
+  bool IsFeasible(const double*) const override { return true; }
+
+ private:
+  const ContactManager* manager_;
+};
+
+void RegisterProbe() {
+  static const bool registered = [] {
+    EffectRegistry::Global().Register(
+        "gap_probe", "test: records gaps at accepted iterates",
+        [](TermBuilder& builder, const json&) {
+          const ContactManager* manager = nullptr;
+          for (const auto& f : builder.potential()->step_filters()) {
+            if (auto* m = dynamic_cast<const ContactManager*>(f.get())) manager = m;
+          }
+          if (manager == nullptr) throw std::logic_error("gap_probe needs contact");
+          builder.AddStepFilter(std::make_unique<GapProbe>(manager));
+          return std::string("gap probe");
+        });
+    return true;
+  }();
+  (void)registered;
+}
+
+SceneLoadOptions ContactLoadOptions() {
+  SceneLoadOptions options;
+  options.extra_effects = EffectRegistry::Global().UserNames();
+  return options;
+}
+
+Scene LoadWithProbe(const std::string& name_or_json, bool is_json = false) {
+  RegisterProbe();
+  Scene scene = is_json ? ParseScene(name_or_json, "test.json", ContactLoadOptions())
+                        : LoadScene(name_or_json, ContactLoadOptions());
+  scene.effects.push_back("gap_probe");
+  return scene;
+}
+
+const ContactManager& Manager(const Simulation& sim) {
+  for (const auto& f : sim.potential().step_filters()) {
+    if (auto* m = dynamic_cast<const ContactManager*>(f.get())) return *m;
+  }
+  throw std::logic_error("no contact manager");
+}
+
+struct SceneCase {
+  std::string scene;
+  std::string integrator;
+  std::string optimizer;
+  int steps;
+  double dt;  // 0: the scene's
+};
+
+std::string CaseName(const ::testing::TestParamInfo<SceneCase>& info) {
+  return info.param.scene + "_" + info.param.integrator + "_" + info.param.optimizer;
+}
+
+class ContactScenes : public ::testing::TestWithParam<SceneCase> {};
+
+// Runs a few steps past first contact and checks gaps at every accepted iterate
+// and after every step.
+TEST_P(ContactScenes, NoPenetrationAtAnyAcceptedIterate) {
+  const SceneCase& c = GetParam();
+  Scene scene = LoadWithProbe(c.scene);
+  SimulationOptions options = testing::Options(c.integrator, c.optimizer, c.dt, 1e-5);
+  options.optimizer.max_iterations = c.optimizer == "newton" ? 500 : 20000;
+  g_probe = ProbeRecord{};
+  Simulation sim(scene, options);
+  const ContactManager& manager = Manager(sim);
+  int contact_steps = 0;
+  for (int step = 0; step < c.steps; ++step) {
+    const StepReport r = sim.Step();
+    ASSERT_TRUE(r.status.find("infeasible") == std::string::npos)
+        << "step " << step << " " << r.status;
+    ASSERT_TRUE(sim.state().x.allFinite()) << "step " << step;
+    EXPECT_TRUE(r.converged) << "step " << r.step << ": " << r.status << " residual " << r.residual;
+    ASSERT_EQ(r.diagnostics.size(), 2u);
+    if (!std::isnan(r.diagnostics[0])) {
+      EXPECT_GT(r.diagnostics[0], 0.0);
+      ++contact_steps;
+    }
+    EXPECT_TRUE(manager.FindPenetration(sim.state().x.data(), sim.state().time).empty());
+  }
+  EXPECT_GT(contact_steps, 0) << "the run never reached contact";
+  EXPECT_GT(g_probe.accepted, 0);
+  EXPECT_GT(g_probe.min_gap, 0.0);
+  EXPECT_FALSE(g_probe.nan);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, ContactScenes,
+    ::testing::Values(SceneCase{"drop", "backward_euler", "newton", 36, 0},
+                      SceneCase{"drop", "newmark", "newton", 36, 0},
+                      SceneCase{"drop", "backward_euler", "lbfgs", 36, 0},
+                      SceneCase{"drop", "newmark", "lbfgs", 36, 0},
+                      SceneCase{"squeeze", "backward_euler", "newton", 26, 0},
+                      SceneCase{"squeeze", "newmark", "newton", 26, 0},
+                      SceneCase{"squeeze", "backward_euler", "lbfgs", 26, 0},
+                      SceneCase{"squeeze", "newmark", "lbfgs", 26, 0},
+                      SceneCase{"two_squares", "backward_euler", "newton", 22, 0},
+                      SceneCase{"two_squares", "newmark", "newton", 22, 0},
+                      SceneCase{"two_squares", "backward_euler", "lbfgs", 22, 0},
+                      SceneCase{"two_squares", "newmark", "lbfgs", 22, 0},
+                      SceneCase{"impact", "newmark", "newton", 80, 0},
+                      SceneCase{"impact", "backward_euler", "newton", 80, 0},
+                      SceneCase{"impact", "newmark", "lbfgs", 80, 0},
+                      SceneCase{"impact", "backward_euler", "lbfgs", 80, 0},
+                      SceneCase{"slope", "backward_euler", "newton", 36, 0},
+                      SceneCase{"slope", "newmark", "newton", 36, 0},
+                      SceneCase{"slope", "backward_euler", "lbfgs", 36, 0},
+                      SceneCase{"slope", "newmark", "lbfgs", 36, 0},
+                      SceneCase{"cloth_sphere", "backward_euler", "newton", 20, 0},
+                      SceneCase{"cloth_sphere", "newmark", "newton", 20, 0},
+                      SceneCase{"cloth_sphere", "backward_euler", "lbfgs", 20, 0},
+                      SceneCase{"cloth_sphere", "newmark", "lbfgs", 20, 0}),
+    CaseName);
+
+// A particle at 100 m/s whose predictor lies far beyond a 2 mm wall.
+const char* kWallScene = R"({
+  "dimension": 2, "effects": ["contact"],
+  "particle": {"position": [-0.1, 0], "mass": 1, "velocity": [100, 0]},
+  "contact": {"dhat": 1e-3, "kappa": 1e3,
+              "obstacles": [{"type": "box", "min": [0, -1], "max": [0.002, 1]}]}
+})";
+
+TEST(ContactTunnelling, FastParticleIsStoppedByAThinWall) {
+  for (const char* optimizer : {"newton", "lbfgs", "gradient_descent"}) {
+    for (const char* integrator : {"backward_euler", "newmark"}) {
+      Scene scene = LoadWithProbe(kWallScene, true);
+      g_probe = ProbeRecord{};
+      SimulationOptions options = testing::Options(integrator, optimizer, 0.01, 1e-6);
+      options.optimizer.max_iterations = 50000;
+      Simulation sim(scene, options);
+      for (int step = 0; step < 5; ++step) {
+        const StepReport r = sim.Step();
+        EXPECT_LT(sim.state().x[0], 0.0) << optimizer << " " << integrator << " step " << step;
+        EXPECT_EQ(r.status.find("infeasible"), std::string::npos) << r.status;
+      }
+      EXPECT_GT(g_probe.min_gap, 0.0) << optimizer << " " << integrator;
+    }
+  }
+}
+
+// A particle fired at a pinned two-node body (one boundary edge), 2D self-contact.
+const char* kEdgeScene = R"({
+  "dimension": 2, "effects": ["springs", "contact"],
+  "nodes": {"positions": [[0, -0.5], [0, 0.5], [-0.1, 0.05]], "masses": [1, 1, 1],
+            "velocities": [[0, 0], [0, 0], [100, 0]]},
+  "springs": [{"nodes": [0, 1], "model": "hookean", "stiffness": 100}],
+  "pinned": [0, 1],
+  "contact": {"dhat": 1e-3, "kappa": 1e3, "self_contact": true}
+})";
+
+TEST(ContactTunnelling, FastParticleIsStoppedByAnEdge) {
+  for (const char* optimizer : {"newton", "lbfgs"}) {
+    for (const char* integrator : {"backward_euler", "newmark"}) {
+      Scene scene = LoadWithProbe(kEdgeScene, true);
+      g_probe = ProbeRecord{};
+      SimulationOptions options = testing::Options(integrator, optimizer, 0.01, 1e-6);
+      options.optimizer.max_iterations = 50000;
+      Simulation sim(scene, options);
+      ASSERT_EQ(Manager(sim).surface().edges.size(), 1u);
+      for (int step = 0; step < 5; ++step) {
+        const StepReport r = sim.Step();
+        EXPECT_LT(sim.state().x[4], 0.0) << optimizer << " " << integrator << " step " << step;
+        EXPECT_EQ(r.status.find("infeasible"), std::string::npos) << r.status;
+      }
+      EXPECT_GT(g_probe.min_gap, 0.0);
+    }
+  }
+}
+
+// A particle resting on a slope of angle theta with friction mu: distance slid
+// along the slope after `steps` steps of backward Euler.
+double SlideDistance(double tan_theta, double mu, double h, int steps) {
+  const double theta = std::atan(tan_theta);
+  const double d_hat = 1e-3;
+  // Start at rest, d_hat / 2 above the slope through the origin.
+  const double nx = -std::sin(theta), ny = std::cos(theta);
+  json scene = {{"dimension", 2},
+                {"effects", {"gravity", "contact", "friction"}},
+                {"gravity", {0, -9.81}},
+                {"particle", {{"position", {0.5 * d_hat * nx, 0.5 * d_hat * ny}}, {"mass", 1}}},
+                {"contact",
+                 {{"dhat", d_hat},
+                  {"kappa", 1e4},
+                  {"obstacles", {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {nx, ny}}}}}}},
+                {"friction", {{"mu", mu}, {"epsilon_v", 1e-4}, {"iterations", 2}}}};
+  Simulation sim(ParseScene(scene, "slope_test.json", ContactLoadOptions()),
+                 testing::Options("backward_euler", "newton", h, 1e-6));
+  const Eigen::Vector2d down(-std::cos(theta), -std::sin(theta));  // down the slope
+  const Eigen::Vector2d x0 = sim.state().x.head<2>();
+  for (int step = 0; step < steps; ++step) {
+    const StepReport r = sim.Step();
+    EXPECT_TRUE(r.converged) << r.status << " residual " << r.residual;
+  }
+  return (sim.state().x.head<2>() - x0).dot(down);
+}
+
+TEST(ContactFriction, SlopeThreshold) {
+  const double h = 0.005, g = 9.81, mu = 0.11;
+  const int steps = 100;
+  const double t = h * steps;
+  // Below the threshold: stays put up to the epsilon_v creep (1e-4 m/s).
+  const double stuck = SlideDistance(0.1, mu, h, steps);
+  EXPECT_LT(std::abs(stuck), 1e-4 * t * 2) << stuck;
+  // Above: a = g (sin - mu cos); backward Euler gives s_n = a h^2 n (n + 1) / 2.
+  const double theta = std::atan(0.2);
+  const double a = g * (std::sin(theta) - mu * std::cos(theta));
+  const double slid = SlideDistance(0.2, mu, h, steps);
+  EXPECT_NEAR(slid, 0.5 * a * h * h * steps * (steps + 1), 0.01 * slid);
+}
+
+TEST(ContactFriction, EnergyNeverIncreasesWithBackwardEuler) {
+  // The drop square thrown sideways onto the ground with friction: closed system.
+  json scene = json::parse(BuiltinSceneText("drop"));
+  scene["effects"].push_back("friction");
+  scene["friction"] = {{"mu", 0.3}, {"epsilon_v", 1e-3}};
+  scene["grid"]["origin"] = {-0.5, 0.01};  // bottom 1 cm above the ground
+  scene["initial_velocity"] = {2.0, -0.5};
+  Simulation sim(ParseScene(scene, "energy_test.json", ContactLoadOptions()),
+                 testing::Options("backward_euler", "newton", 0.01, 1e-5));
+  double previous = sim.Energies().total();
+  for (int step = 0; step < 25; ++step) {
+    const StepReport r = sim.Step();
+    ASSERT_TRUE(r.converged) << "step " << r.step << " " << r.status;
+    EXPECT_LE(r.energies.total(), previous + 1e-6 * std::abs(previous)) << "step " << r.step;
+    previous = r.energies.total();
+  }
+}
+
+void ExpectInputError(json scene, const std::string& key, const std::string& what = "") {
+  try {
+    Simulation sim(ParseScene(scene, "bad.json", ContactLoadOptions()),
+                   testing::Options("backward_euler", "newton", 0.01));
+    ADD_FAILURE() << "no error for " << key;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("bad.json: " + key, 0), 0u) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  }
+}
+
+TEST(ContactInput, BadParametersAreInputErrors) {
+  const json drop = json::parse(BuiltinSceneText("slope"));
+  json s = drop;
+  s["contact"]["dhat"] = 0;
+  ExpectInputError(s, "contact.dhat", "> 0");
+  s["contact"]["dhat"] = -0.01;
+  ExpectInputError(s, "contact.dhat", "> 0");
+  s = drop;
+  s["contact"]["kappa"] = -1;
+  ExpectInputError(s, "contact.kappa", "> 0");
+  s = drop;
+  s["friction"]["mu"] = -0.1;
+  ExpectInputError(s, "friction.mu", ">= 0");
+  s = drop;
+  s["friction"]["epsilon_v"] = 0;
+  ExpectInputError(s, "friction.epsilon_v", "> 0");
+  s = drop;
+  s["contact"]["obstacles"][0]["point"] = {0, 0};  // the ground through the square
+  ExpectInputError(s, "contact", "not free of contact");
+  s = drop;
+  s["contact"]["obstacles"][0]["type"] = "cone";
+  ExpectInputError(s, "contact.obstacles[0].type", "unknown obstacle type");
+  s = drop;
+  s["contact"]["obstacles"][0]["normal"] = {0, 0};
+  ExpectInputError(s, "contact.obstacles[0].normal", "zero");
+  s = drop;
+  s["contact"]["typo"] = 1;
+  ExpectInputError(s, "contact.typo", "unknown key");
+  s = drop;
+  s["effects"] = {"gravity", "springs", "friction", "contact"};
+  ExpectInputError(s, "effects", "before");
+}
+
+}  // namespace
+}  // namespace ipstep
