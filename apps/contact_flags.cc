@@ -5,6 +5,7 @@
 
 #include "contact/contact_overrides.h"
 #include "core/input_error.h"
+#include "problems/scene.h"
 
 DEFINE_double(contact_kappa, 0.0,
               "Fixed barrier stiffness kappa for scenes with contact (> 0); 0: the scene's "
@@ -60,4 +61,22 @@ const bool kInstalled = [] {
 }();
 
 }  // namespace
+
+void CheckContactFlagsApply(const Scene& scene) {
+  struct {
+    const char* flag;
+    const char* effect;
+  } const uses[] = {{"contact_kappa", "contact"},
+                    {"contact_dhat", "contact"},
+                    {"friction_mu", "friction"},
+                    {"friction_iterations", "friction"}};
+  for (const auto& use : uses) {
+    if (!IsDefault(use.flag) && !scene.HasEffect(use.effect)) {
+      throw InputError("flag", std::string("--") + use.flag,
+                       "applies to scenes with the '" + std::string(use.effect) +
+                           "' effect; scene " + scene.source + " has none");
+    }
+  }
+}
+
 }  // namespace ipstep

@@ -10,3 +10,13 @@ DECLARE_double(contact_kappa);
 DECLARE_double(contact_dhat);
 DECLARE_double(friction_mu);
 DECLARE_int32(friction_iterations);
+
+namespace ipstep {
+
+struct Scene;
+
+// Throws InputError naming the flag when a contact flag is given for a scene
+// without the effect it overrides.
+void CheckContactFlagsApply(const Scene& scene);
+
+}  // namespace ipstep

@@ -16,6 +16,7 @@
 
 #include <gflags/gflags.h>
 
+#include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
@@ -85,6 +86,7 @@ bool ExactOscillator(const Scene& scene, double t, Eigen::VectorXd* x) {
 int Run() {
   SimulationOptions base = SimulationOptionsFromFlags();
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
+  CheckContactFlagsApply(scene);
   const std::vector<std::string> integrators = Split(FLAGS_integrators);
   const std::vector<std::string> optimizers = Split(FLAGS_optimizers);
   for (const std::string& name : integrators) {

@@ -10,6 +10,7 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
@@ -38,6 +39,7 @@ int Run() {
   }
   if (FLAGS_frame_every < 1) throw InputError("flag", "--frame_every", "must be >= 1");
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
+  CheckContactFlagsApply(scene);
   Simulation sim(scene, options);
 
   std::unique_ptr<StatsWriter> stats;

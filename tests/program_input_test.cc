@@ -94,6 +94,8 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
   ExpectInputError("--stats=/nonexistent_dir/x.csv", "flag", "--stats");
   ExpectInputError("stray_argument", "command line", "stray_argument");
+  ExpectInputError("--scene=cloth --friction_mu=0.3", "flag", "--friction_mu");
+  ExpectInputError("--scene=oscillator --contact_dhat=0.01", "flag", "--contact_dhat");
 }
 
 TEST_F(ProgramInput, BadSceneFiles) {
