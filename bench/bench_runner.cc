@@ -1,0 +1,300 @@
+#include "bench/bench_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "core/input_error.h"
+#include "energies/effect_registry.h"
+#include "problems/scene_loader.h"
+
+namespace ipstep {
+namespace bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double ParseNumber(const std::string& spec, const std::string& key, const std::string& value) {
+  size_t used = 0;
+  double number = 0.0;
+  try {
+    number = std::stod(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size() || !std::isfinite(number)) {
+    throw InputError("optimizer spec", spec, key + ": not a number: '" + value + "'");
+  }
+  return number;
+}
+
+int ParseCount(const std::string& spec, const std::string& key, const std::string& value) {
+  const double number = ParseNumber(spec, key, value);
+  if (number < 1 || number != std::floor(number) || number > 1e9) {
+    throw InputError("optimizer spec", spec, key + ": must be an integer >= 1");
+  }
+  return static_cast<int>(number);
+}
+
+std::string Quote(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c == '\n' ? ' ' : c;
+  }
+  return quoted + "\"";
+}
+
+std::string Number(double value) {
+  if (std::isnan(value)) return "";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.6g", value);
+  return buffer;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
+  OptimizerSpec spec;
+  spec.text = text;
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  for (std::string part; std::getline(stream, part, '+');) parts.push_back(part);
+  if (parts.empty() || parts[0].empty()) throw InputError("optimizer spec", text, "empty");
+  const std::string& name = parts[0];
+  spec.reference = name == "projected_newton";
+  spec.none = name == "none";
+  spec.newton.tolerance = tolerance;
+  spec.ceres.tolerance = tolerance;
+  if (!spec.reference && !spec.none) spec.ceres.optimizer = ParseOptimizer(name);
+  for (size_t p = 1; p < parts.size(); ++p) {
+    const size_t eq = parts[p].find('=');
+    if (eq == std::string::npos) {
+      throw InputError("optimizer spec", text, "'" + parts[p] + "' is not key=value");
+    }
+    const std::string key = parts[p].substr(0, eq), value = parts[p].substr(eq + 1);
+    if (key == "max_iterations") {
+      spec.ceres.max_iterations = ParseCount(text, key, value);
+      spec.newton.max_iterations = spec.ceres.max_iterations;
+      continue;
+    }
+    if (spec.reference || spec.none) {
+      throw InputError("optimizer spec", text, "unknown key '" + key + "' for " + name);
+    }
+    if (key == "sparse") {
+      spec.ceres.sparse_library = value;
+    } else if (key == "radius") {
+      spec.ceres.initial_trust_region_radius = ParseNumber(text, key, value);
+    } else if (key == "linear_solver") {
+      spec.ceres.linear_solver = value;
+    } else if (key == "threads") {
+      spec.ceres.num_threads = ParseCount(text, key, value);
+    } else if (key == "line_search") {
+      spec.ceres.line_search = value;
+    } else if (key == "rank") {
+      spec.ceres.lbfgs_rank = ParseCount(text, key, value);
+    } else if (key == "type") {
+      spec.ceres.nonlinear_cg = value;
+    } else {
+      throw InputError("optimizer spec", text,
+                       "unknown key '" + key +
+                           "' (sparse, radius, linear_solver, threads, max_iterations, "
+                           "line_search, rank, type)");
+    }
+  }
+  // Validates the Ceres options now (a bad spec is an input error, not a run failure).
+  if (!spec.reference && !spec.none) {
+    if (IsTrustRegion(spec.ceres.optimizer)) {
+      MakeTrustRegionOptions(spec.ceres);
+    } else {
+      MakeLineSearchOptions(spec.ceres);
+    }
+  }
+  return spec;
+}
+
+Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
+  Trajectory out;
+  const auto setup_start = Clock::now();
+  SceneLoadOptions load;
+  load.grid_size = config.grid_size;
+  load.extra_effects = EffectRegistry::Global().UserNames();
+  const Scene scene = LoadScene(config.scene, load);
+  SimulationOptions options;
+  options.integrator.name = config.integrator;
+  options.optimizer = spec.ceres;
+  options.time_step = config.dt;
+  options.steps = config.steps;
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = std::make_unique<Simulation>(scene, options);
+  } catch (const std::exception& e) {
+    out.status = std::string("error: ") + e.what();
+    out.final_x.resize(0);
+    return out;
+  }
+  const bool variational = sim->integrator().is_variational();
+  if (spec.none != !variational) {
+    out.status = "error: optimizer '" + spec.text + "' does not fit integrator " +
+                 config.integrator + (variational ? "" : " (use none)");
+    return out;
+  }
+  ProjectedNewtonSolver* reference = nullptr;
+  if (spec.reference) {
+    sim->ReplaceStepSolver([&](IncrementalPotential* potential, const State* state) {
+      auto solver = std::make_unique<ProjectedNewtonSolver>(potential, state, spec.newton);
+      reference = solver.get();
+      return solver;
+    });
+  }
+  out.setup_seconds = Since(setup_start);
+  const State& state = sim->state();
+  out.nodes = state.num_nodes();
+  out.dimension = state.dimension;
+  out.free_dofs = state.num_free_nodes() * state.dimension;
+  for (int i = 0; i < state.num_nodes(); ++i) {
+    if (state.is_free(i)) out.free_nodes.push_back(i);
+  }
+  out.initial_energy = sim->Energies().total();
+  const double scale = std::max(std::abs(out.initial_energy), 1e-300);
+  const auto loop_start = Clock::now();
+  for (int step = 0; step < config.steps; ++step) {
+    const StepReport report = sim->Step();
+    ++out.steps_done;
+    out.iterations += report.iterations;
+    out.evaluations += report.evaluations;
+    out.max_step_iterations = std::max(out.max_step_iterations, report.iterations);
+    if (variational) out.worst_residual = std::max(out.worst_residual, report.residual);
+    if (!report.converged) {
+      ++out.failed_steps;
+      if (out.status == "ok") out.status = "failed steps (first: " + report.status + ")";
+    }
+    if (!state.x.allFinite() || !state.v.allFinite()) {
+      out.status = "diverged at step " + std::to_string(step + 1);
+      break;
+    }
+    const double drift = std::abs(report.energies.total() - out.initial_energy) / scale;
+    out.max_energy_drift = std::max(out.max_energy_drift, std::isfinite(drift) ? drift : 1e300);
+    if (config.max_run_seconds > 0.0 && Since(loop_start) > config.max_run_seconds &&
+        step + 1 < config.steps) {
+      out.status = "timeout after " + std::to_string(step + 1) + " steps";
+      break;
+    }
+  }
+  out.loop_seconds = Since(loop_start);
+  out.final_x = state.x;
+  if (reference != nullptr) out.phases = reference->timings();
+  return out;
+}
+
+bool ExactFinalPositions(const std::string& scene, double t, Eigen::VectorXd* x) {
+  if (scene != "oscillator") return false;
+  x->resize(4);
+  *x << 0.0, 0.0, 1.0 + 0.1 * std::cos(t), 0.0;
+  return true;
+}
+
+double MaxNodeError(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                    const std::vector<int>& free_nodes, int dimension) {
+  if (x.size() != y.size() || x.size() == 0) return std::nan("");
+  double worst = 0.0;
+  for (int i : free_nodes) {
+    worst = std::max(
+        worst, (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm());
+  }
+  return std::isfinite(worst) ? worst : std::nan("");
+}
+
+std::string ReferenceCache::ReferenceIntegrator(const std::string& integrator) {
+  return integrator == "quasi_static" ? "quasi_static" : "newmark";
+}
+
+const Reference& ReferenceCache::Get(const std::string& scene, int grid_size,
+                                     const std::string& integrator, double dt_min, double t_end) {
+  const std::string method = ReferenceIntegrator(integrator);
+  const auto key = std::make_tuple(scene, grid_size, method, dt_min, t_end);
+  auto found = cache_.find(key);
+  if (found != cache_.end()) return found->second;
+  Reference& reference = cache_[key];
+  const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
+  RunConfig config;
+  config.scene = scene;
+  config.grid_size = grid_size;
+  config.integrator = method;
+  config.optimizer = optimizer_;
+  config.tolerance = tolerance_;
+  Trajectory runs[2];
+  for (int r = 0; r < 2; ++r) {
+    const int refine = r == 0 ? 16 : 8;
+    config.steps = static_cast<int>(std::llround(t_end / dt_min * refine));
+    config.dt = t_end / config.steps;
+    runs[r] = RunTrajectory(config, spec);
+    if (r == 0) reference.dt = config.dt;
+  }
+  const double order = method == "newmark" ? 2.0 : 1.0;
+  reference.x = runs[0].final_x;
+  reference.ok = runs[0].status == "ok" && runs[1].status == "ok";
+  reference.error =
+      MaxNodeError(runs[0].final_x, runs[1].final_x, runs[0].free_nodes, runs[0].dimension) /
+      (std::pow(2.0, order) - 1.0);
+  char text[160];
+  std::snprintf(text, sizeof(text), "%s dt=%.4g tol=%g %s%s", method.c_str(), reference.dt,
+                tolerance_, optimizer_.c_str(),
+                reference.ok ? "" : (" FAILED: " + runs[0].status).c_str());
+  reference.description = text;
+  return reference;
+}
+
+std::string CsvHeader() {
+  return "id,scene,grid_size,nodes,free_dofs,integrator,optimizer,dt,steps,t_end,tolerance,"
+         "repeats,warmup,wall_s_median,wall_s_min,wall_per_sim_s,ms_per_step,setup_s,"
+         "iterations_per_step,max_step_iterations,evaluations_per_step,failed_steps,"
+         "worst_residual,steps_done,status,position_error,energy_drift,reference,reference_dt,"
+         "reference_error,pn_hessian_s,pn_factorize_s,pn_line_search_s,pn_gradient_s,shard";
+}
+
+std::string CsvRow(const RunRow& row) {
+  const RunConfig& c = row.config;
+  const Trajectory& t = row.result;
+  const double median = Median(row.wall);
+  const double min =
+      row.wall.empty() ? std::nan("") : *std::min_element(row.wall.begin(), row.wall.end());
+  const int steps = std::max(1, t.steps_done);
+  const bool ran = t.steps_done > 0;
+  const bool pn = c.optimizer == "projected_newton";
+  std::ostringstream out;
+  out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
+      << ',' << c.integrator << ',' << Quote(c.optimizer) << ',' << Number(c.dt) << ',' << c.steps
+      << ',' << Number(c.dt * c.steps) << ',' << Number(c.tolerance) << ',' << c.repeats << ','
+      << c.warmup << ',' << Number(median) << ',' << Number(min) << ','
+      << Number(ran ? median / (c.dt * steps) : std::nan("")) << ','
+      << Number(ran ? 1e3 * median / steps : std::nan("")) << ',' << Number(t.setup_seconds) << ','
+      << Number(static_cast<double>(t.iterations) / steps) << ',' << t.max_step_iterations << ','
+      << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
+      << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
+      << Number(row.position_error) << ',' << Number(ran ? t.max_energy_drift : std::nan("")) << ','
+      << Quote(row.reference) << ',' << Number(row.reference_dt) << ','
+      << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
+      << Number(pn ? t.phases.factorize : std::nan("")) << ','
+      << Number(pn ? t.phases.line_search : std::nan("")) << ','
+      << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard;
+  return out.str();
+}
+
+}  // namespace bench
+}  // namespace ipstep

@@ -1,0 +1,121 @@
+// Building blocks of ipstep_bench: optimiser specifications, one timed run of a
+// scene, reference solutions and the CSV row format. See docs/benchmarks.md.
+#pragma once
+
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "bench/projected_newton_solver.h"
+#include "sim/simulation.h"
+
+namespace ipstep {
+namespace bench {
+
+// "projected_newton" (the Eigen reference of bench/projected_newton_solver.h),
+// "none" (explicit integrators), or a Ceres optimiser name followed by options:
+//   newton+sparse=SUITE_SPARSE+radius=1e8   lbfgs+rank=5   ncg+type=POLAK_RIBIERE
+// Keys: sparse, radius, linear_solver, threads, max_iterations, line_search,
+// rank, type. Throws InputError naming the spec.
+struct OptimizerSpec {
+  std::string text;
+  bool reference = false;  // projected Newton on Eigen
+  bool none = false;       // no optimiser (explicit integrator)
+  OptimizerOptions ceres;
+  ProjectedNewtonOptions newton;
+};
+OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance);
+
+struct RunConfig {
+  int id = 0;  // position in the sweep (rows are merged back in this order)
+  std::string scene;
+  int grid_size = 0;  // 0: the scene's
+  std::string integrator;
+  std::string optimizer;  // spec text
+  double dt = 0.0;
+  int steps = 0;
+  double tolerance = 1e-6;
+  int repeats = 1;
+  int warmup = 0;
+  double max_run_seconds = 0.0;  // one run stops (status "timeout") beyond this; 0: none
+};
+
+// What one run (one trajectory) produced.
+struct Trajectory {
+  Eigen::VectorXd final_x;
+  std::vector<int> free_nodes;
+  double initial_energy = 0.0;
+  double max_energy_drift = 0.0;  // max_n |E_n - E_0| / |E_0|
+  int steps_done = 0;
+  int failed_steps = 0;
+  double worst_residual = 0.0;  // largest stopping measure at the end of a step [m/s]
+  long iterations = 0;
+  int max_step_iterations = 0;
+  long evaluations = 0;
+  double loop_seconds = 0.0;   // Step() loop
+  double setup_seconds = 0.0;  // scene loading + Simulation construction
+  std::string status = "ok";   // ok | failed steps | diverged | timeout | error: ...
+  int nodes = 0;
+  int free_dofs = 0;
+  int dimension = 2;
+  // Projected Newton only: time per phase over the run.
+  ProjectedNewtonSolver::Timings phases;
+};
+
+// Runs config.steps steps once. Never throws for run failures (they go into
+// status); throws InputError only for an invalid config.
+Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec);
+
+// One CSV row per config.
+struct RunRow {
+  RunConfig config;
+  Trajectory result;            // of the last repeat
+  std::vector<double> wall;     // loop seconds per timed repeat
+  double position_error = 0.0;  // final time, max over free nodes [m]
+  std::string reference;        // "exact" or a description
+  double reference_dt = 0.0;
+  double reference_error = 0.0;  // estimated error of the reference itself [m]
+  std::string shard;
+};
+
+std::string CsvHeader();
+std::string CsvRow(const RunRow& row);
+
+// The exact final positions where known (the oscillator: x = 1 + 0.1 cos t).
+bool ExactFinalPositions(const std::string& scene, double t, Eigen::VectorXd* x);
+
+// Reference final positions for (scene, grid, integrator family, t_end):
+// `integrator` at dt_ref = dt_min / 16 with a tight tolerance, and at 2 dt_ref to
+// estimate its own error as |x(2 dt_ref) - x(dt_ref)| / (2^p - 1).
+struct Reference {
+  Eigen::VectorXd x;
+  double dt = 0.0;
+  double error = 0.0;
+  std::string description;
+  bool ok = false;
+};
+class ReferenceCache {
+ public:
+  ReferenceCache(std::string optimizer, double tolerance)
+      : optimizer_(std::move(optimizer)), tolerance_(tolerance) {}
+  // The reference integrator for runs of `integrator`: quasi_static for
+  // quasi_static (a different problem), newmark (trapezoidal, order 2) otherwise.
+  static std::string ReferenceIntegrator(const std::string& integrator);
+  const Reference& Get(const std::string& scene, int grid_size, const std::string& integrator,
+                       double dt_min, double t_end);
+
+ private:
+  std::string optimizer_;
+  double tolerance_;
+  std::map<std::tuple<std::string, int, std::string, double, double>, Reference> cache_;
+};
+
+// Final-position error: max over free nodes of |x_i - y_i| [m].
+double MaxNodeError(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                    const std::vector<int>& free_nodes, int dimension);
+
+}  // namespace bench
+}  // namespace ipstep

@@ -1,0 +1,279 @@
+#!/usr/bin/python3
+"""Plots and markdown tables from ipstep_bench CSV files (docs/benchmarks.md).
+
+  plot_benchmarks.py work-precision RESULTS.csv --out docs/img
+      work_precision.{png,svg}  error vs wall time per simulated second
+      convergence.{png,svg}     error vs dt with fitted order
+      iterations.{png,svg}      iterations per step by optimiser
+      energy_drift.{png,svg}    max relative energy drift vs dt
+  plot_benchmarks.py table RESULTS.csv [--baseline projected_newton]
+      markdown: iterations, ms per step (and per iteration), failed steps, error,
+      time ratio to the baseline optimiser of the same scene/grid/integrator/dt
+  plot_benchmarks.py scaling RESULTS.csv --out docs/img
+      scaling.{png,svg} and a markdown table with fitted exponents
+
+Needs only matplotlib (Debian: python3-matplotlib) and the standard library.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def number(text):
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        return math.nan
+    return value
+
+
+def read(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for key in ("dt", "tolerance", "wall_per_sim_s", "ms_per_step", "iterations_per_step",
+                    "position_error", "energy_drift", "reference_error", "free_dofs",
+                    "failed_steps", "grid_size", "steps", "steps_done"):
+            r[key] = number(r.get(key))
+    return rows
+
+
+def ok(r):
+    return r["status"] == "ok" and r["steps_done"] == r["steps"]
+
+
+def usable(r):
+    """Completed runs (possibly with failed steps) that have an error value."""
+    if r["optimizer"] == "none" and r["failed_steps"] > 0:
+        return False  # explicit integrator blew up (forces not evaluable)
+    return r["steps_done"] == r["steps"] and not r["status"].startswith(("error", "diverged",
+                                                                          "timeout"))
+
+
+def fit_slope(xs, ys):
+    pts = [(math.log10(x), math.log10(y)) for x, y in zip(xs, ys) if x > 0 and y > 0]
+    if len(pts) < 2:
+        return math.nan
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    if sxx == 0:
+        return math.nan
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+
+
+def label_of(r):
+    opt = r["optimizer"]
+    return r["integrator"] if opt == "none" else f'{r["integrator"]} × {opt}'
+
+
+def save(fig, out, name):
+    os.makedirs(out, exist_ok=True)
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    print(f"wrote {out}/{name}.png and .svg")
+
+
+def scene_name(r):
+    g = int(r["grid_size"]) if r["grid_size"] == r["grid_size"] else 0
+    return r["scene"] + (f" {g}²" if g > 0 else "")
+
+
+def scene_grid(rows):
+    scenes = []
+    for r in rows:
+        if scene_name(r) not in scenes:
+            scenes.append(scene_name(r))
+    cols = 2 if len(scenes) > 1 else 1
+    nrows = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(6.4 * cols, 4.6 * nrows), squeeze=False)
+    for ax in axes.flat[len(scenes):]:
+        ax.set_visible(False)
+    return scenes, fig, list(axes.flat)
+
+
+STYLE = {}
+
+
+def style(label):
+    if label not in STYLE:
+        colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        markers = "os^vDP*Xh<>"
+        i = len(STYLE)
+        STYLE[label] = (colors[i % len(colors)], markers[(i // len(colors) + i) % len(markers)])
+    return STYLE[label]
+
+
+def work_precision(rows, out):
+    scenes, fig, axes = scene_grid(rows)
+    for scene, ax in zip(scenes, axes):
+        sub = [r for r in rows if scene_name(r) == scene and usable(r)
+               and r["position_error"] > 0 and r["wall_per_sim_s"] > 0]
+        tight = min((r["tolerance"] for r in sub), default=math.nan)
+        groups = defaultdict(list)
+        for r in sub:
+            groups[label_of(r)].append(r)
+        for label, runs in sorted(groups.items()):
+            color, marker = style(label)
+            line = sorted((r for r in runs if r["tolerance"] == tight or r["optimizer"] == "none"),
+                          key=lambda r: r["dt"])
+            ax.loglog([r["wall_per_sim_s"] for r in line], [r["position_error"] for r in line],
+                      marker=marker, color=color, label=label)
+            loose = [r for r in runs if r["tolerance"] != tight and r["optimizer"] != "none"]
+            ax.loglog([r["wall_per_sim_s"] for r in loose], [r["position_error"] for r in loose],
+                      marker=marker, color=color, linestyle="none", markerfacecolor="none")
+        ax.set_title(f"{scene} (lines: tol {tight:g} m/s, hollow: looser)")
+        ax.set_xlabel("wall time per simulated second [s]")
+        ax.set_ylabel("final position error [m]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    save(fig, out, "work_precision")
+
+    scenes, fig, axes = scene_grid(rows)
+    for scene, ax in zip(scenes, axes):
+        sub = [r for r in rows if scene_name(r) == scene and usable(r) and r["position_error"] > 0]
+        tight = min((r["tolerance"] for r in sub), default=math.nan)
+        groups = defaultdict(list)
+        for r in sub:
+            if r["tolerance"] == tight or r["optimizer"] == "none":
+                groups[label_of(r)].append(r)
+        for label, runs in sorted(groups.items()):
+            runs.sort(key=lambda r: r["dt"])
+            slope = fit_slope([r["dt"] for r in runs], [r["position_error"] for r in runs])
+            color, marker = style(label)
+            ax.loglog([r["dt"] for r in runs], [r["position_error"] for r in runs], marker=marker,
+                      color=color, label=f"{label}: order {slope:.2f}")
+        refs = [r["reference_error"] for r in sub if r["reference_error"] > 0]
+        if refs:
+            ax.axhline(max(refs), color="gray", linestyle=":", label="reference's own error")
+        ax.set_title(f"{scene}: convergence (tol {tight:g} m/s)")
+        ax.set_xlabel("time step dt [s]")
+        ax.set_ylabel("final position error [m]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    save(fig, out, "convergence")
+
+    scenes, fig, axes = scene_grid(rows)
+    for scene, ax in zip(scenes, axes):
+        sub = [r for r in rows if scene_name(r) == scene and r["optimizer"] != "none"
+               and r["steps_done"] > 0]
+        groups = defaultdict(list)
+        for r in sub:
+            groups[(r["optimizer"], r["tolerance"])].append(r["iterations_per_step"])
+        keys = sorted(groups)
+        values = [sum(groups[k]) / len(groups[k]) for k in keys]
+        ax.bar(range(len(keys)), values, color=[style(k[0])[0] for k in keys])
+        ax.set_xticks(range(len(keys)))
+        ax.set_xticklabels([f"{k[0]}\ntol {k[1]:g}" for k in keys], fontsize=7)
+        ax.set_yscale("log")
+        ax.set_ylabel("iterations per step (mean over integrators, dt)")
+        ax.set_title(scene)
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+    save(fig, out, "iterations")
+
+    scenes, fig, axes = scene_grid(rows)
+    for scene, ax in zip(scenes, axes):
+        sub = [r for r in rows if scene_name(r) == scene and usable(r) and r["energy_drift"] > 0]
+        tight = min((r["tolerance"] for r in sub), default=math.nan)
+        groups = defaultdict(list)
+        for r in sub:
+            if r["tolerance"] == tight or r["optimizer"] == "none":
+                groups[label_of(r)].append(r)
+        for label, runs in sorted(groups.items()):
+            runs.sort(key=lambda r: r["dt"])
+            color, marker = style(label)
+            ax.loglog([r["dt"] for r in runs], [r["energy_drift"] for r in runs], marker=marker,
+                      color=color, label=label)
+        ax.set_title(f"{scene}: max |E - E0| / |E0|")
+        ax.set_xlabel("time step dt [s]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    save(fig, out, "energy_drift")
+
+
+def fmt(value, spec=".3g"):
+    return "—" if value != value else format(value, spec)
+
+
+def table(rows, baseline):
+    base = {}
+    for r in rows:
+        if r["optimizer"] == baseline and r["steps_done"] == r["steps"]:
+            base[(r["scene"], r["grid_size"], r["integrator"], r["dt"], r["tolerance"])] = r
+    print(f"| scene | DOFs | integrator | optimiser | iterations/step | ms/step | ms/iteration "
+          f"| × {baseline} (ms/step) | × {baseline} (iterations) | failed steps | worst residual "
+          f"[m/s] | error [m] | status |")
+    print("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for r in rows:
+        b = base.get((r["scene"], r["grid_size"], r["integrator"], r["dt"], r["tolerance"]))
+        done = r["steps_done"] == r["steps"]
+        ratio = r["ms_per_step"] / b["ms_per_step"] if b and done else math.nan
+        iratio = (r["iterations_per_step"] / b["iterations_per_step"]
+                  if b and done and b["iterations_per_step"] > 0 else math.nan)
+        per_it = (r["ms_per_step"] / r["iterations_per_step"]
+                  if r["iterations_per_step"] > 0 else math.nan)
+        status = r["status"] if len(r["status"]) < 60 else r["status"][:57] + "..."
+        print(f'| {scene_name(r)} | {int(r["free_dofs"])} | {r["integrator"]} | {r["optimizer"]} '
+              f'| {fmt(r["iterations_per_step"])} | {fmt(r["ms_per_step"])} | {fmt(per_it)} '
+              f'| {fmt(ratio, ".2f")} | {fmt(iratio, ".2f")} | {int(r["failed_steps"])} '
+              f'| {fmt(number(r["worst_residual"]), ".2g")} | {fmt(r["position_error"], ".2e")} '
+              f'| {status} |')
+
+
+def scaling(rows, out):
+    groups = defaultdict(list)
+    for r in rows:
+        if r["steps_done"] > 0 and r["ms_per_step"] > 0:
+            groups[r["optimizer"]].append(r)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    print("| optimiser | " + " | ".join(["DOFs → ms/step (iterations/step)"]) +
+          " | fitted exponent (ms/step ∝ DOFs^p) |")
+    print("|---|---|---:|")
+    for opt, runs in sorted(groups.items()):
+        runs.sort(key=lambda r: r["free_dofs"])
+        complete = [r for r in runs if r["steps_done"] == r["steps"]]
+        slope = fit_slope([r["free_dofs"] for r in complete], [r["ms_per_step"] for r in complete])
+        color, marker = style(opt)
+        ax.loglog([r["free_dofs"] for r in complete], [r["ms_per_step"] for r in complete],
+                  marker=marker, color=color, label=f"{opt}: p = {slope:.2f}")
+        cells = ", ".join(f'{int(r["free_dofs"])} → {r["ms_per_step"]:.3g} '
+                          f'({r["iterations_per_step"]:.3g})'
+                          + ("" if r in complete else f' [{r["status"]}]') for r in runs)
+        print(f"| {opt} | {cells} | {slope:.2f} |")
+    ax.set_xlabel("free degrees of freedom (2D cloth)")
+    ax.set_ylabel("ms per step")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, "scaling")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("mode", choices=["work-precision", "table", "scaling"])
+    parser.add_argument("csv", nargs="+")
+    parser.add_argument("--out", default="docs/img")
+    parser.add_argument("--baseline", default="projected_newton")
+    args = parser.parse_args()
+    rows = [r for path in args.csv for r in read(path)]
+    if not rows:
+        sys.exit(f"{args.csv}: no rows")
+    if args.mode == "work-precision":
+        work_precision(rows, args.out)
+    elif args.mode == "table":
+        table(rows, args.baseline)
+    else:
+        scaling(rows, args.out)
+
+
+if __name__ == "__main__":
+    main()
