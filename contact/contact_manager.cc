@@ -145,6 +145,44 @@ void ContactManager::EdgeCandidates(const double* a, const double* b, double gro
   }
 }
 
+std::string ContactManager::EdgeObstacleConflict(const double* a, const double* x, double t) const {
+  if (dim_ != 2) return "";
+  for (size_t o = 0; o < options_.obstacles.size(); ++o) {
+    const Obstacle& obstacle = options_.obstacles[o];
+    if (obstacle.type == ObstacleType::kPlane) continue;
+    // Features that can cross an edge's interior first, in world coordinates.
+    const Eigen::Vector3d shift = obstacle.velocity * t;
+    std::vector<Eigen::Vector2d> features;
+    if (obstacle.type == ObstacleType::kSphere) {
+      features.push_back((obstacle.point + shift).head<2>());
+    } else {
+      for (int corner = 0; corner < 4; ++corner) {
+        features.emplace_back((corner & 1 ? obstacle.upper : obstacle.lower)[0] + shift[0],
+                              (corner & 2 ? obstacle.upper : obstacle.lower)[1] + shift[1]);
+      }
+    }
+    for (const auto& e : surface_.edges) {
+      const Eigen::Vector3d p = ToPoint(x + 2 * e[0], 2), q = ToPoint(x + 2 * e[1], 2);
+      // The segment p -> q read as a point path: it meets the grown obstacle.
+      if (obstacle.TimeOfImpact(p, q, t, t, margin_) <= 1.0) {
+        std::ostringstream out;
+        out << "boundary edge (" << e[0] << ", " << e[1] << ") meets " << obstacle.name;
+        return out.str();
+      }
+      if (a == x) continue;
+      for (const Eigen::Vector2d& f : features) {
+        if (PointEdgeTimeOfImpact(f, f, Node2(a, e[0]), Node2(x, e[0]), Node2(a, e[1]),
+                                  Node2(x, e[1])) <= 1.0) {
+          std::ostringstream out;
+          out << "boundary edge (" << e[0] << ", " << e[1] << ") sweeps across " << obstacle.name;
+          return out.str();
+        }
+      }
+    }
+  }
+  return "";
+}
+
 std::string ContactManager::FindPenetration(const double* x, double t) const {
   for (size_t s = 0; s < surface_.nodes.size(); ++s) {
     for (size_t o = 0; o < options_.obstacles.size(); ++o) {
@@ -157,6 +195,8 @@ std::string ContactManager::FindPenetration(const double* x, double t) const {
       }
     }
   }
+  const std::string conflict = EdgeObstacleConflict(x, x, t);
+  if (!conflict.empty()) return conflict;
   std::vector<EdgePair> pairs;
   EdgeCandidates(x, x, 0.0, &pairs);
   for (const EdgePair& p : pairs) {
@@ -206,6 +246,7 @@ bool ContactManager::IsStepValid(const double* x) const {
       if (o.TimeOfImpact(pa, pb, tau_, tau_, margin_) <= 1.0) return false;
     }
   }
+  if (!EdgeObstacleConflict(a, x, tau_).empty()) return false;
   if (options_.self_contact) {
     std::vector<EdgePair> pairs;
     EdgeCandidates(a, x, margin_, &pairs);
@@ -242,7 +283,17 @@ double ContactManager::MaxStepSize(const double* from, const double* to) const {
                                             Node2(to, e[0]), Node2(from, e[1]), Node2(to, e[1])));
     }
   }
-  return std::clamp(t, 0.0, 1.0);
+  t = std::clamp(t, 0.0, 1.0);
+  // Edges against circles and boxes: halve until the path is clear.
+  if (dim_ == 2 && t > 0.0) {
+    Eigen::VectorXd end(accepted_.size());
+    for (int halvings = 0; halvings < 60; ++halvings) {
+      for (int k = 0; k < end.size(); ++k) end[k] = from[k] + t * (to[k] - from[k]);
+      if (EdgeObstacleConflict(from, end.data(), tau_).empty()) break;
+      t *= 0.5;
+    }
+  }
+  return t;
 }
 
 bool ContactManager::IsFeasible(const double* x) const {
@@ -337,6 +388,7 @@ void ContactManager::RebuildBarrierTerms() {
     Term term;
     term.kind = TermKind::kPotential;
     term.family = kContactFamily;
+    term.impulsive = true;
     term.nodes = {surface_.nodes[pair.slot]};
     term.cost = std::make_unique<PointObstacleGap>(dim_, &options_.obstacles[pair.obstacle], &tau_,
                                                    d_hat, margin_);
@@ -348,6 +400,7 @@ void ContactManager::RebuildBarrierTerms() {
     Term term;
     term.kind = TermKind::kPotential;
     term.family = kContactFamily;
+    term.impulsive = true;
     term.nodes = {surface_.nodes[pair.slot], e[0], e[1]};
     term.cost = std::make_unique<PointEdgeGap>(d_hat, margin_);
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.weights[pair.slot], &kappa_);
@@ -390,10 +443,11 @@ void ContactManager::RebuildFrictionTerms() {
     Term term;
     term.kind = TermKind::kDissipation;
     term.family = kFrictionFamily;
+    term.impulsive = true;
     term.nodes = {f.node};
-    term.cost =
-        std::make_unique<ObstacleFriction>(context_, f.node, f.tangents, f.obstacle_velocity);
-    term.loss = std::make_unique<FrictionLoss>(friction_.mu * f.normal_force, friction_.epsilon_v);
+    term.cost = std::make_unique<ObstacleFriction>(context_, f.node, f.tangents,
+                                                   f.obstacle_velocity, friction_.epsilon_v);
+    term.loss = std::make_unique<FrictionLoss>(friction_.mu * f.normal_force);
     potential_->AddTerm(std::move(term));
     ++num_friction_terms_;
   }
@@ -401,9 +455,11 @@ void ContactManager::RebuildFrictionTerms() {
     Term term;
     term.kind = TermKind::kDissipation;
     term.family = kFrictionFamily;
+    term.impulsive = true;
     term.nodes = {f.p, f.a, f.b};
-    term.cost = std::make_unique<EdgeFriction>(context_, f.p, f.a, f.b, f.tangent, f.alpha);
-    term.loss = std::make_unique<FrictionLoss>(friction_.mu * f.normal_force, friction_.epsilon_v);
+    term.cost = std::make_unique<EdgeFriction>(context_, f.p, f.a, f.b, f.tangent, f.alpha,
+                                               friction_.epsilon_v);
+    term.loss = std::make_unique<FrictionLoss>(friction_.mu * f.normal_force);
     potential_->AddTerm(std::move(term));
     ++num_friction_terms_;
   }
@@ -512,6 +568,12 @@ void ContactManager::BeginStep(const double* x_n) {
     }
     reach[s] = 2.0 * std::sqrt(r2);
     max_reach = std::max(max_reach, reach[s]);
+  }
+  // Quasi-static steps have no predictor: the solution may be anywhere (a body
+  // in the air falls onto an obstacle within one step), so every node-obstacle
+  // pair is a candidate (terms out of reach are exactly zero).
+  if (!(context_->inertia_weight > 0.0)) {
+    std::fill(reach.begin(), reach.end(), kInfinity);
   }
   ExtendPairs(x_n, x_tilde.data(), reach, max_reach);
 

@@ -139,6 +139,15 @@ class ContactManager : public StepFilter {
   }
   bool PairHasFreeNode(const EdgePair& pair) const;
 
+  // 2D boundary edges against circles and boxes (an edge can cross a small
+  // circle or a box corner with both end nodes outside; planes need no check: a
+  // segment meets a half-space only where an end point does). Static: the
+  // segment at x keeps more than `margin_` from the obstacle at time t. Path
+  // from a: the circle's centre and the box's corners do not cross the edge
+  // moving linearly from a to x (a == x: static check only). Empty if clear,
+  // else a description.
+  std::string EdgeObstacleConflict(const double* a, const double* x, double t) const;
+
   // Point-edge candidates whose boxes (from a to b, grown by `grow`) overlap.
   void EdgeCandidates(const double* a, const double* b, double grow,
                       std::vector<EdgePair>* pairs) const;

@@ -1,5 +1,6 @@
 #include "contact/contact_terms.h"
 
+#include "contact/friction.h"
 #include "contact/point_edge.h"
 
 namespace ipstep {
@@ -54,12 +55,13 @@ bool PointEdgeGap::Evaluate(double const* const* x, double* residuals, double** 
 
 ObstacleFriction::ObstacleFriction(const StepContext* context, int node,
                                    const Eigen::Matrix3d& tangents,
-                                   const Eigen::Vector3d& obstacle_velocity)
+                                   const Eigen::Vector3d& obstacle_velocity, double eps_v)
     : context_(context),
       node_(node),
       dimension_(context->dimension),
       tangents_(tangents),
-      obstacle_velocity_(obstacle_velocity) {
+      obstacle_velocity_(obstacle_velocity),
+      eps_v_(eps_v) {
   set_num_residuals(dimension_ - 1);
   mutable_parameter_block_sizes()->push_back(dimension_);
 }
@@ -69,15 +71,20 @@ bool ObstacleFriction::Evaluate(double const* const* x, double* residuals,
   double v[3] = {0.0, 0.0, 0.0};
   context_->Velocity(node_, x[0], v);
   const int m = dimension_ - 1;
+  double v_t[2] = {0.0, 0.0};
   for (int j = 0; j < m; ++j) {
-    double r = 0.0;
-    for (int k = 0; k < dimension_; ++k) r += tangents_(k, j) * (v[k] - obstacle_velocity_[k]);
-    residuals[j] = r;
+    for (int k = 0; k < dimension_; ++k) v_t[j] += tangents_(k, j) * (v[k] - obstacle_velocity_[k]);
   }
-  if (jacobians != nullptr && jacobians[0] != nullptr) {
-    for (int j = 0; j < m; ++j) {
+  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+  double dr_dv[4];
+  FrictionResidual(v_t, m, eps_v_, residuals, want_jacobian ? dr_dv : nullptr);
+  if (want_jacobian) {
+    // dr/dx = dr/dv_t * slope T^T.
+    for (int i = 0; i < m; ++i) {
       for (int k = 0; k < dimension_; ++k) {
-        jacobians[0][j * dimension_ + k] = context_->velocity_slope * tangents_(k, j);
+        double sum = 0.0;
+        for (int j = 0; j < m; ++j) sum += dr_dv[i * m + j] * tangents_(k, j);
+        jacobians[0][i * dimension_ + k] = context_->velocity_slope * sum;
       }
     }
   }
@@ -85,28 +92,30 @@ bool ObstacleFriction::Evaluate(double const* const* x, double* residuals,
 }
 
 EdgeFriction::EdgeFriction(const StepContext* context, int p, int a, int b,
-                           const Eigen::Vector2d& tangent, double alpha)
+                           const Eigen::Vector2d& tangent, double alpha, double eps_v)
     : context_(context),
       nodes_{p, a, b},
       tangent_(tangent),
-      coefficients_{1.0, -(1.0 - alpha), -alpha} {
+      coefficients_{1.0, -(1.0 - alpha), -alpha},
+      eps_v_(eps_v) {
   set_num_residuals(1);
   for (int block = 0; block < 3; ++block) mutable_parameter_block_sizes()->push_back(2);
 }
 
 bool EdgeFriction::Evaluate(double const* const* x, double* residuals, double** jacobians) const {
-  double r = 0.0;
+  double v_t = 0.0;
   for (int block = 0; block < 3; ++block) {
     double v[2];
     context_->Velocity(nodes_[block], x[block], v);
-    r += coefficients_[block] * (tangent_[0] * v[0] + tangent_[1] * v[1]);
+    v_t += coefficients_[block] * (tangent_[0] * v[0] + tangent_[1] * v[1]);
   }
-  residuals[0] = r;
+  double dr_dv = 0.0;
+  FrictionResidual(&v_t, 1, eps_v_, residuals, &dr_dv);
   if (jacobians != nullptr) {
     for (int block = 0; block < 3; ++block) {
       if (jacobians[block] == nullptr) continue;
       for (int k = 0; k < 2; ++k) {
-        jacobians[block][k] = coefficients_[block] * context_->velocity_slope * tangent_[k];
+        jacobians[block][k] = dr_dv * coefficients_[block] * context_->velocity_slope * tangent_[k];
       }
     }
   }

@@ -7,9 +7,10 @@
 // obstacle, so the trial point is infeasible. Beyond d_hat the residual and its
 // Jacobian are zero, so terms of pairs out of reach cost nothing.
 //
-// Friction terms (kind kDissipation, with a FrictionLoss): the relative
-// tangential velocity v_t = T^T v_rel (dimension - 1 residuals), with the
-// velocity map of the step context v(x) = v_base + slope (x - x_base).
+// Friction terms (kind kDissipation, with a FrictionLoss): the residual
+// r(v_t) of contact/friction.h (dimension - 1 components) of the relative
+// tangential velocity v_t = T^T v_rel, with the velocity map of the step
+// context v(x) = v_base + slope (x - x_base).
 #pragma once
 
 #include <ceres/cost_function.h>
@@ -51,7 +52,7 @@ class PointEdgeGap : public ceres::CostFunction {
 class ObstacleFriction : public ceres::CostFunction {
  public:
   ObstacleFriction(const StepContext* context, int node, const Eigen::Matrix3d& tangents,
-                   const Eigen::Vector3d& obstacle_velocity);
+                   const Eigen::Vector3d& obstacle_velocity, double eps_v);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
 
  private:
@@ -60,6 +61,7 @@ class ObstacleFriction : public ceres::CostFunction {
   int dimension_;
   Eigen::Matrix3d tangents_;
   Eigen::Vector3d obstacle_velocity_;
+  double eps_v_;
 };
 
 // 2D point p against edge [a, b]: v_t = t . (v_p - (1 - alpha) v_a - alpha v_b),
@@ -67,7 +69,7 @@ class ObstacleFriction : public ceres::CostFunction {
 class EdgeFriction : public ceres::CostFunction {
  public:
   EdgeFriction(const StepContext* context, int p, int a, int b, const Eigen::Vector2d& tangent,
-               double alpha);
+               double alpha, double eps_v);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
 
  private:
@@ -75,6 +77,7 @@ class EdgeFriction : public ceres::CostFunction {
   int nodes_[3];
   Eigen::Vector2d tangent_;
   double coefficients_[3];
+  double eps_v_;
 };
 
 }  // namespace ipstep

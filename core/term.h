@@ -37,6 +37,10 @@ struct Term {
   std::vector<int> nodes;                     // one parameter block per node
   std::unique_ptr<ceres::CostFunction> cost;  // unweighted residual
   std::unique_ptr<ceres::LossFunction> loss;  // may be null
+  // Impulsive (contact barrier, friction): integrators that keep an acceleration
+  // history (Newmark) apply these forces as an impulse over the step instead
+  // (Integrator::UpdateWithImpulses).
+  bool impulsive = false;
   // Optional: the same residual evaluated in extended precision (long double),
   // set for autodiff terms. Line searches compare energies whose differences near
   // convergence are far below double round-off of the energies themselves.

@@ -40,6 +40,16 @@ class Integrator {
   // nodes into `state` (the caller then sets constrained nodes and time).
   virtual void Update(const Eigen::VectorXd& x_next, double h, State* state) const = 0;
 
+  // As Update, given the impulsive forces at x_next (forces of Term::impulsive
+  // terms, the contact barrier and friction: -grad of their weighted energy / w_U).
+  // Only integrators that return true from separates_impulses() are given them.
+  virtual bool separates_impulses() const { return false; }
+  virtual void UpdateWithImpulses(const Eigen::VectorXd& x_next,
+                                  const Eigen::VectorXd& /*impulsive_forces*/, double h,
+                                  State* state) const {
+    Update(x_next, h, state);
+  }
+
   // Explicit integrators only: advances `state` by h given the forces
   // f(x_n, v_n) (including gravity).
   virtual void Advance(const Eigen::VectorXd& forces, double h, State* state) const;

@@ -34,4 +34,21 @@ void Newmark::Update(const Eigen::VectorXd& x_next, double h, State* s) const {
   s->x = x_next;
 }
 
+void Newmark::UpdateWithImpulses(const Eigen::VectorXd& x_next,
+                                 const Eigen::VectorXd& impulsive_forces, double h,
+                                 State* s) const {
+  const int dim = s->dimension;
+  Eigen::VectorXd impulse_acceleration(impulsive_forces.size());
+  for (int i = 0; i < s->num_nodes(); ++i) {
+    impulse_acceleration.segment(dim * i, dim) =
+        s->is_free(i) ? Eigen::VectorXd(impulsive_forces.segment(dim * i, dim) / s->mass[i])
+                      : Eigen::VectorXd::Zero(dim);
+  }
+  const Eigen::VectorXd a_next =
+      (x_next - ExplicitPart(*s, h)) / (beta_ * h * h) - impulse_acceleration;
+  s->v += h * ((1.0 - gamma_) * s->a + gamma_ * a_next) + 2.0 * beta_ * h * impulse_acceleration;
+  s->a = a_next;
+  s->x = x_next;
+}
+
 }  // namespace ipstep

@@ -98,6 +98,16 @@ void Simulation::SolveStep(Eigen::VectorXd* x, StepReport* report) {
     Eigen::VectorXd start = state_.x;
     ApplyBoundaryConditions(t_next, &start);
     potential_->NotifyAccepted(state_.x.data());
+    if (!potential_->IsStepValid(state_.x.data())) {
+      // x_n itself is infeasible (at the filters' time, e.g. a moving obstacle's
+      // first stage): only possible after a failed step was accepted.
+      report->converged = false;
+      report->status =
+          "infeasible start: the state at the start of the step penetrates (after a "
+          "failed step)";
+      *x = state_.x;
+      return;
+    }
     if (!potential_->IsStepValid(start.data())) {
       report->converged = false;
       report->status = "infeasible start: prescribed nodes move into an obstacle";
@@ -129,6 +139,27 @@ void Simulation::SolveStep(Eigen::VectorXd* x, StepReport* report) {
     report->converged = false;
     report->status = "infeasible state after the step (penetration)";
   }
+}
+
+bool Simulation::ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const {
+  const StepContext& c = potential_->context();
+  forces->setZero(x.size());
+  bool any = false;
+  Eigen::VectorXd gradient(x.size());
+  for (TermKind kind : {TermKind::kPotential, TermKind::kDissipation}) {
+    double energy = 0.0;
+    int count = 0;
+    const auto filter = [kind, &count](const Term& t) {
+      const bool take = t.impulsive && t.kind == kind;
+      count += take;
+      return take;
+    };
+    if (!potential_->EvaluateUnweighted(filter, x.data(), &energy, gradient.data())) return false;
+    if (count == 0) continue;
+    *forces -= (TermWeight(kind, c) / c.potential_weight) * gradient;
+    any = true;
+  }
+  return any;
 }
 
 std::vector<std::string> Simulation::DiagnosticNames() const {
@@ -170,7 +201,12 @@ StepReport Simulation::Step() {
   if (integrator_->is_variational()) {
     ApplyBoundaryConditions(t_next, &x);
     SolveStep(&x, &report);
-    integrator_->Update(x, h, &state_);
+    Eigen::VectorXd impulsive_forces;
+    if (integrator_->separates_impulses() && ImpulsiveForces(x, &impulsive_forces)) {
+      integrator_->UpdateWithImpulses(x, impulsive_forces, h, &state_);
+    } else {
+      integrator_->Update(x, h, &state_);
+    }
   } else {
     Eigen::VectorXd forces;
     if (!ComputeForces(potential_.get(), state_, gravity_, &forces)) {

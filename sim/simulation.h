@@ -78,6 +78,9 @@ class Simulation {
   void BuildPotential();
   void ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const;
   void SolveStep(Eigen::VectorXd* x, StepReport* report);
+  // Forces of the impulsive terms (Term::impulsive) at x, -grad E_impulsive / w_U;
+  // false when there are none (or they cannot be evaluated).
+  bool ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const;
 
   Scene scene_;
   SimulationOptions options_;

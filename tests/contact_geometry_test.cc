@@ -96,29 +96,58 @@ TEST(Friction, MollifierAndLossMatchFiniteDifferences) {
   EXPECT_EQ(FrictionF0(0.0, eps), 0.0);
 
   const double scale = 3.0;
-  const FrictionLoss loss(scale, eps);
-  for (double y : {1e-4, 5e-4, 2e-3, 0.5}) {
-    const double s = y * y;
-    double rho[3];
-    loss.Evaluate(s, rho);
-    EXPECT_NEAR(0.5 * rho[0], scale * FrictionF0(y, eps), 1e-12 * (1 + rho[0]));
-    EXPECT_NEAR(rho[1], scale * FrictionF1(y, eps) / y, 1e-9 * rho[1]);
-    EXPECT_GT(rho[1], 0.0);
-    EXPECT_LE(rho[2], 0.0);
-    const double hs = 1e-5 * s;
-    auto r0 = [&](double t) {
-      double r[3];
-      loss.Evaluate(t, r);
-      return r[0];
-    };
-    auto r1 = [&](double t) {
-      double r[3];
-      loss.Evaluate(t, r);
-      return r[1];
-    };
-    EXPECT_NEAR(rho[1], Derivative(r0, s, hs), 1e-5 * rho[1]);
-    EXPECT_NEAR(rho[2], Derivative(r1, s, hs), 1e-5 * std::abs(rho[2]));
+  const FrictionLoss loss(scale);
+  double rho[3];
+  loss.Evaluate(0.7, rho);
+  EXPECT_EQ(rho[0], scale * 0.7);
+  EXPECT_EQ(rho[1], scale);
+  EXPECT_EQ(rho[2], 0.0);
+}
+
+// The friction residual r(v) = psi(|v|) v/|v|: 1/2 |r|^2 = f0(|v|), dr/dv against
+// central differences (stick and slip, 1 and 2 components, at 0), and the
+// Gauss-Newton curvature along the slip, psi'^2 = f1^2 / (2 f0), never above the
+// old split's f1/y and equal to f1'(0) = 2/eps_v at rest.
+TEST(Friction, ResidualMatchesDissipationAndFiniteDifferences) {
+  const double eps = 1e-3;
+  for (int m : {1, 2}) {
+    for (double y : {0.0, 1e-6, 2e-4, 5e-4, 9.99e-4, 1e-3, 1.5e-3, 0.1, 3.0}) {
+      const double v[2] = {y * (m == 1 ? -1.0 : 0.6), y * 0.8};
+      double r[2], jac[4];
+      FrictionResidual(v, m, eps, r, jac);
+      const double norm = m == 1 ? y : y;  // |v| = y in both cases
+      const double s = r[0] * r[0] + (m == 2 ? r[1] * r[1] : 0.0);
+      EXPECT_NEAR(0.5 * s, FrictionF0(norm, eps), 1e-12 * (1.0 + FrictionF0(norm, eps)))
+          << m << " " << y;
+      const double h = 1e-9 + 1e-6 * y;
+      for (int j = 0; j < m; ++j) {
+        double vp[2] = {v[0], v[1]}, vm[2] = {v[0], v[1]}, rp[2], rm[2];
+        vp[j] += h;
+        vm[j] -= h;
+        FrictionResidual(vp, m, eps, rp, nullptr);
+        FrictionResidual(vm, m, eps, rm, nullptr);
+        for (int i = 0; i < m; ++i) {
+          const double fd = (rp[i] - rm[i]) / (2.0 * h);
+          EXPECT_NEAR(jac[i * m + j], fd, 1e-5 * (1.0 + std::abs(fd))) << m << " " << y;
+        }
+      }
+      if (m == 1) {
+        const double along = jac[0] * jac[0];
+        if (y > 0.0) {
+          EXPECT_NEAR(along, FrictionF1(y, eps) * FrictionF1(y, eps) / (2.0 * FrictionF0(y, eps)),
+                      1e-9 * along);
+          EXPECT_LE(along, FrictionF1(y, eps) / y * (1.0 + 1e-12));
+        } else {
+          EXPECT_NEAR(along, 2.0 / eps, 1e-9 / eps);
+        }
+      }
+    }
   }
+  // Sliding: half the old curvature f1/y, far from eps_v.
+  double r, jac;
+  const double v = 0.1;
+  FrictionResidual(&v, 1, eps, &r, &jac);
+  EXPECT_NEAR(jac * jac * v, 0.5, 0.01);
 }
 
 Obstacle Plane2D() {
@@ -319,10 +348,26 @@ TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
   context.v_base << 1, 2, 3, 4, 5, 6;
   Eigen::Matrix3d tangents = Eigen::Matrix3d::Zero();
   tangents.col(0) = Eigen::Vector3d(0.6, 0.8, 0);
-  ObstacleFriction friction(&context, 1, tangents, Eigen::Vector3d(0.5, 0, 0));
+  ObstacleFriction friction(&context, 1, tangents, Eigen::Vector3d(0.5, 0, 0), 1e-3);
   CheckJacobian(friction, {{0.31, 0.42}});
-  EdgeFriction edge_friction(&context, 0, 1, 2, Eigen::Vector2d(1, 0), 0.3);
+  EdgeFriction edge_friction(&context, 0, 1, 2, Eigen::Vector2d(1, 0), 0.3, 1e-3);
   CheckJacobian(edge_friction, {{0.11, 0.2}, {0.3, 0.41}, {0.52, 0.6}});
+  // Sticking (|v_t| < eps_v): node 1 at x_base - v_base / slope + a small slip.
+  ObstacleFriction sticking(&context, 1, tangents, Eigen::Vector3d(0, 0, 0), 1.0);
+  CheckJacobian(sticking, {{0.3 - 3.0 / 50 + 0.002, 0.4 - 4.0 / 50 + 0.001}});
+
+  // 3D, two tangent residuals.
+  StepContext context3;
+  context3.Resize(3, 1);
+  context3.velocity_slope = 20.0;
+  context3.v_base << 0.3, -0.2, 0.1;
+  Eigen::Matrix3d tangents3 = Eigen::Matrix3d::Zero();
+  tangents3.col(0) = Eigen::Vector3d(1, 0, 0);
+  tangents3.col(1) = Eigen::Vector3d(0, 0, 1);
+  for (double eps_v : {1e-3, 10.0}) {  // sliding, sticking
+    ObstacleFriction friction3(&context3, 0, tangents3, Eigen::Vector3d::Zero(), eps_v);
+    CheckJacobian(friction3, {{0.01, 0.02, -0.03}});
+  }
 }
 
 }  // namespace

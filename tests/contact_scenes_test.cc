@@ -155,10 +155,10 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"slope", "newmark", "newton", 36, 0},
                       SceneCase{"slope", "backward_euler", "lbfgs", 36, 0},
                       SceneCase{"slope", "newmark", "lbfgs", 36, 0},
-                      SceneCase{"cloth_sphere", "backward_euler", "newton", 20, 0},
-                      SceneCase{"cloth_sphere", "newmark", "newton", 20, 0},
-                      SceneCase{"cloth_sphere", "backward_euler", "lbfgs", 20, 0},
-                      SceneCase{"cloth_sphere", "newmark", "lbfgs", 20, 0}),
+                      SceneCase{"cloth_sphere", "backward_euler", "newton", 40, 0},
+                      SceneCase{"cloth_sphere", "newmark", "newton", 40, 0},
+                      SceneCase{"cloth_sphere", "backward_euler", "lbfgs", 40, 0},
+                      SceneCase{"cloth_sphere", "newmark", "lbfgs", 40, 0}),
     CaseName);
 
 // A particle at 100 m/s whose predictor lies far beyond a 2 mm wall.
@@ -214,6 +214,140 @@ TEST(ContactTunnelling, FastParticleIsStoppedByAnEdge) {
       EXPECT_GT(g_probe.min_gap, 0.0);
     }
   }
+}
+
+void ExpectInputError(json scene, const std::string& key, const std::string& what = "") {
+  try {
+    Simulation sim(ParseScene(scene, "bad.json", ContactLoadOptions()),
+                   testing::Options("backward_euler", "newton", 0.01));
+    ADD_FAILURE() << "no error for " << key;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("bad.json: " + key, 0), 0u) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  }
+}
+
+// Newmark with contact: the barrier and friction forces are impulses
+// (Integrator::UpdateWithImpulses), not part of the acceleration history.
+// Before, a particle bouncing on the ground with Newmark(1/4, 1/2) left every
+// impact with a random energy (0.98 mJ -> 4.0, 21, 4.2, 17 mJ over 200 steps).
+TEST(ContactNewmark, ImpactsDoNotCreateEnergy) {
+  const json scene = {
+      {"dimension", 2},
+      {"effects", {"gravity", "contact"}},
+      {"gravity", {0, -9.81}},
+      {"particle", {{"position", {0, 0.05}}, {"mass", 0.002}}},
+      {"contact",
+       {{"dhat", 0.005},
+        {"obstacles", {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {0, 1}}}}}}}};
+  Simulation sim(ParseScene(scene, "bounce.json", ContactLoadOptions()),
+                 testing::Options("newmark", "newton", 0.01, 1e-5));
+  const double initial = sim.Energies().total();
+  int free_flight_steps = 0;
+  for (int step = 0; step < 200; ++step) {
+    const StepReport r = sim.Step();
+    ASSERT_TRUE(r.converged) << "step " << r.step << " " << r.status;
+    // In contact the reported energy counts the barrier at kappa, twice its
+    // effective stiffness 2 beta kappa under Newmark (docs/contact.md): compare
+    // out of contact.
+    if (!std::isnan(r.diagnostics[0])) continue;
+    ++free_flight_steps;
+    EXPECT_LE(r.energies.total(), initial * (1 + 1e-9)) << "step " << r.step;
+  }
+  EXPECT_GT(free_flight_steps, 5);
+  // At rest on the ground: the barrier carries the weight.
+  EXPECT_LT(std::abs(sim.state().v[1]), 1e-6);
+  EXPECT_GT(sim.state().x[1], 0.0);
+}
+
+// cloth_sphere with Newmark used to fail 72 of 100 steps (h = 10 ms, energy
+// 0.59 J -> 2458 J): the trapezoidal rule is energy-unstable on this stiff
+// nonlinear cloth at 10 ms (also with no contact at all, the cloth pinned at
+// the nodes that touch the sphere), so the scene now uses h = 5 ms. First
+// contact is at step 32; the run covers the drape until step 90.
+TEST(ContactNewmark, ClothSphereDrapesWithoutEnergyGrowth) {
+  Simulation sim(LoadScene("cloth_sphere", ContactLoadOptions()),
+                 testing::Options("newmark", "newton", 0, 1e-5));
+  const double initial = sim.Energies().total();
+  int contact_steps = 0;
+  for (int step = 0; step < 90; ++step) {
+    const StepReport r = sim.Step();
+    EXPECT_TRUE(r.converged) << "step " << r.step << " " << r.status << " " << r.residual;
+    EXPECT_LE(r.energies.total(), initial * 1.001) << "step " << r.step;
+    contact_steps += !std::isnan(r.diagnostics[0]);
+  }
+  EXPECT_GT(contact_steps, 30);
+}
+
+// squeeze with Newmark: the moving ceiling's staged time used to fall short of
+// t_{n+1} within the solves of step 34 ("infeasible state after the step"),
+// and every later step then started inside the ceiling ("infeasible start").
+TEST(ContactNewmark, SqueezeUnderAMovingCeiling) {
+  Simulation sim(LoadScene("squeeze", ContactLoadOptions()),
+                 testing::Options("newmark", "newton", 0, 1e-5));
+  for (int step = 0; step < 50; ++step) {
+    const StepReport r = sim.Step();
+    EXPECT_TRUE(r.converged) << "step " << r.step << " " << r.status << " " << r.residual;
+  }
+}
+
+// Friction's Gauss-Newton curvature along the slip (contact/friction.h): the
+// slope scene needed 11.5 Newton iterations per step (both integrators) with
+// 2 failed steps (backward Euler: iteration limit at steps 34 and 53); now 8.3
+// and 8.4 (backward Euler still hits the limit at step 34, residual 2e-4 m/s).
+TEST(ContactFriction, SlopeNewtonIterations) {
+  for (const char* integrator : {"backward_euler", "newmark"}) {
+    Simulation sim(LoadScene("slope", ContactLoadOptions()),
+                   testing::Options(integrator, "newton", 0, 1e-5));
+    int failed = 0;
+    long iterations = 0;
+    const int steps = 100;
+    for (int step = 0; step < steps; ++step) {
+      const StepReport r = sim.Step();
+      failed += !r.converged;
+      iterations += r.iterations;
+      EXPECT_EQ(r.status.find("infeasible"), std::string::npos) << r.status;
+    }
+    EXPECT_LE(failed, std::string(integrator) == "newmark" ? 0 : 1) << integrator;
+    EXPECT_LT(static_cast<double>(iterations) / steps, 9.5) << integrator;
+  }
+}
+
+// A two-node body (one boundary edge) thrown down past a small circle: both
+// nodes miss the circle, only the edge would cross it.
+const char* kEdgeOverCircleScene = R"({
+  "dimension": 2, "effects": ["springs", "contact"],
+  "nodes": {"positions": [[-0.1, 0.05], [0.1, 0.05]], "masses": [1, 1],
+            "velocities": [[0, -50], [0, -50]]},
+  "springs": [{"nodes": [0, 1], "model": "hookean", "stiffness": 100}],
+  "contact": {"dhat": 1e-3, "kappa": 1e3,
+              "obstacles": [{"type": "circle", "center": [0, 0], "radius": 0.01},
+                            {"type": "box", "min": [0.3, -0.5], "max": [0.4, -0.4]}]}
+})";
+
+TEST(ContactTunnelling, EdgeDoesNotSweepAcrossACircle) {
+  for (const char* optimizer : {"newton", "lbfgs"}) {
+    for (const char* integrator : {"backward_euler", "newmark"}) {
+      Simulation sim(
+          ParseScene(json::parse(kEdgeOverCircleScene), "edge.json", ContactLoadOptions()),
+          testing::Options(integrator, optimizer, 0.01, 1e-5));
+      for (int step = 0; step < 3; ++step) {
+        const StepReport r = sim.Step();
+        EXPECT_GT(sim.state().x[1], 0.01) << optimizer << " " << integrator << " step " << step;
+        EXPECT_GT(sim.state().x[3], 0.01) << optimizer << " " << integrator << " step " << step;
+        EXPECT_EQ(r.status.find("infeasible"), std::string::npos) << r.status;
+      }
+    }
+  }
+}
+
+TEST(ContactInput, EdgeThroughAnObstacleIsAnInputError) {
+  json scene = json::parse(kEdgeOverCircleScene);
+  scene["nodes"]["positions"] = {{-0.1, 0.0}, {0.1, 0.0}};  // the edge through the circle
+  ExpectInputError(scene, "contact", "boundary edge (0, 1) meets contact.obstacles[0]");
+  scene["nodes"]["positions"] = {{0.2, -0.45}, {0.5, -0.45}};  // through the box
+  ExpectInputError(scene, "contact", "boundary edge (0, 1) meets contact.obstacles[1]");
 }
 
 // A particle resting on a slope of angle theta with friction mu: distance slid
@@ -272,18 +406,6 @@ TEST(ContactFriction, EnergyNeverIncreasesWithBackwardEuler) {
     ASSERT_TRUE(r.converged) << "step " << r.step << " " << r.status;
     EXPECT_LE(r.energies.total(), previous + 1e-6 * std::abs(previous)) << "step " << r.step;
     previous = r.energies.total();
-  }
-}
-
-void ExpectInputError(json scene, const std::string& key, const std::string& what = "") {
-  try {
-    Simulation sim(ParseScene(scene, "bad.json", ContactLoadOptions()),
-                   testing::Options("backward_euler", "newton", 0.01));
-    ADD_FAILURE() << "no error for " << key;
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.rfind("bad.json: " + key, 0), 0u) << message;
-    EXPECT_NE(message.find(what), std::string::npos) << message;
   }
 }
 
