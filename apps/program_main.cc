@@ -1,6 +1,7 @@
 #include "apps/program_main.h"
 
 #include <cstdio>
+#include <exception>
 
 #include <gflags/gflags.h>
 #include <glog/logging.h>
@@ -22,6 +23,10 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: error: %s\n", program, e.what());
     return kInputErrorExitCode;
+  } catch (const std::exception& e) {
+    // Not an input error: a bug. Still one line and an exit code, not an abort.
+    std::fprintf(stderr, "%s: internal error: %s\n", program, e.what());
+    return 1;
   }
 }
 

@@ -8,7 +8,8 @@ namespace ipstep {
 
 // Logging is quiet by default: -v=1 logs every step, -v=2 every optimizer
 // iteration. Returns run()'s exit code, or kInputErrorExitCode after printing
-// "<program>: error: <message>" for an InputError.
+// "<program>: error: <message>" for an InputError (1 and "internal error" for any
+// other exception).
 int ProgramMain(int argc, char** argv, const char* program, const char* usage,
                 const std::function<int()>& run);
 
