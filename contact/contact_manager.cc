@@ -22,6 +22,10 @@ constexpr double kObstacleAdvanceFraction = 0.8;
 // Adaptive kappa: range above kappa_min, and the gap below which it doubles.
 constexpr double kKappaRange = 1e4;
 constexpr double kShrinkingGapFraction = 1e-2;
+// Edge-obstacle barriers: re-lags of the closest point per step, and the
+// relative excess of the lagged gap over the true one that triggers one.
+constexpr int kMaxAlphaLags = 3;
+constexpr double kAlphaLagTolerance = 1e-2;
 
 Eigen::Vector3d Min3(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.cwiseMin(b); }
 Eigen::Vector3d Max3(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.cwiseMax(b); }
@@ -59,6 +63,15 @@ ContactManager::ContactManager(IncrementalPotential* potential, const State* sta
       accepted_(state->x),
       hash_(state->dimension, 1.0) {
   for (int node : surface_.nodes) slot_free_.push_back(state_->is_free(node));
+  for (const auto& e : surface_.edges) {
+    std::array<int, 2> slots{};
+    for (int end = 0; end < 2; ++end) {
+      slots[end] =
+          static_cast<int>(std::lower_bound(surface_.nodes.begin(), surface_.nodes.end(), e[end]) -
+                           surface_.nodes.begin());
+    }
+    edge_slots_.push_back(slots);
+  }
   for (const Obstacle& o : options_.obstacles) has_moving_obstacles_ |= o.is_moving();
   if (options_.self_contact && !surface_.edges.empty()) {
     double total = 0.0;
@@ -145,6 +158,41 @@ void ContactManager::EdgeCandidates(const double* a, const double* b, double gro
   }
 }
 
+std::vector<ContactManager::EdgeObstaclePair> ContactManager::AllEdgeObstaclePairs(
+    bool free_only) const {
+  std::vector<EdgeObstaclePair> pairs;
+  for (size_t e = 0; e < surface_.edges.size(); ++e) {
+    if (free_only && !slot_free_[edge_slots_[e][0]] && !slot_free_[edge_slots_[e][1]]) continue;
+    for (size_t o = 0; o < options_.obstacles.size(); ++o) {
+      const int features = options_.obstacles[o].NumEdgeFeatures();
+      for (int f = 0; f < features; ++f) {
+        pairs.push_back(EdgeObstaclePair{static_cast<int>(e), static_cast<int>(o), f});
+      }
+    }
+  }
+  return pairs;
+}
+
+double ContactManager::EdgeObstacleTimeOfImpact(const double* a, const double* b, double t_a,
+                                                double t_b) const {
+  double first = Obstacle::kNoImpact;
+  for (size_t o = 0; o < options_.obstacles.size(); ++o) {
+    const Obstacle& obstacle = options_.obstacles[o];
+    const int features = obstacle.NumEdgeFeatures();
+    if (features == 0) continue;
+    for (size_t e = 0; e < surface_.edges.size(); ++e) {
+      const int edge = static_cast<int>(e);
+      const Eigen::Vector3d a0 = EdgeEnd(a, edge, 0), a1 = EdgeEnd(b, edge, 0);
+      const Eigen::Vector3d b0 = EdgeEnd(a, edge, 1), b1 = EdgeEnd(b, edge, 1);
+      for (int f = 0; f < features; ++f) {
+        first = std::min(first, obstacle.EdgeTimeOfImpact(f, a0, a1, b0, b1, t_a, t_b, margin_));
+        if (first == 0.0) return 0.0;
+      }
+    }
+  }
+  return first;
+}
+
 std::string ContactManager::EdgeObstacleConflict(const double* a, const double* x, double t) const {
   if (dim_ != 2) return "";
   for (size_t o = 0; o < options_.obstacles.size(); ++o) {
@@ -197,6 +245,17 @@ std::string ContactManager::FindPenetration(const double* x, double t) const {
   }
   const std::string conflict = EdgeObstacleConflict(x, x, t);
   if (!conflict.empty()) return conflict;
+  for (const EdgeObstaclePair& p : AllEdgeObstaclePairs(false)) {
+    const Obstacle& o = options_.obstacles[p.obstacle];
+    const double d = o.EdgeDistance(p.feature, EdgeEnd(x, p.edge, 0), EdgeEnd(x, p.edge, 1), t);
+    if (!(d > margin_)) {
+      const auto& e = surface_.edges[p.edge];
+      std::ostringstream out;
+      out << "edge (" << e[0] << ", " << e[1] << ") is inside or touching " << o.name
+          << " (distance " << d << ")";
+      return out.str();
+    }
+  }
   std::vector<EdgePair> pairs;
   EdgeCandidates(x, x, 0.0, &pairs);
   for (const EdgePair& p : pairs) {
@@ -247,6 +306,7 @@ bool ContactManager::IsStepValid(const double* x) const {
     }
   }
   if (!EdgeObstacleConflict(a, x, tau_).empty()) return false;
+  if (EdgeObstacleTimeOfImpact(a, x, tau_, tau_) <= 1.0) return false;
   if (options_.self_contact) {
     std::vector<EdgePair> pairs;
     EdgeCandidates(a, x, margin_, &pairs);
@@ -283,6 +343,7 @@ double ContactManager::MaxStepSize(const double* from, const double* to) const {
                                             Node2(to, e[0]), Node2(from, e[1]), Node2(to, e[1])));
     }
   }
+  t = std::min(t, EdgeObstacleTimeOfImpact(from, to, tau_, tau_));
   t = std::clamp(t, 0.0, 1.0);
   // Edges against circles and boxes: halve until the path is clear.
   if (dim_ == 2 && t > 0.0) {
@@ -317,6 +378,10 @@ double ContactManager::MinDistance(const double* x, double reach) const {
     const double d = PointEdgeDistance(Node2(x, node), Node2(x, e[0]), Node2(x, e[1])).distance;
     if (d < reach) best = std::min(best, d);
   }
+  for (const EdgeObstaclePair& p : AllEdgeObstaclePairs(false)) {
+    const double d = EdgeObstacleDistance(x, p);
+    if (d < reach) best = std::min(best, d);
+  }
   return best;
 }
 
@@ -333,6 +398,9 @@ int ContactManager::CountPairsWithin(const double* x, double reach) const {
     const auto& e = surface_.edges[p.edge];
     const int node = surface_.nodes[p.slot];
     count += PointEdgeDistance(Node2(x, node), Node2(x, e[0]), Node2(x, e[1])).distance < reach;
+  }
+  for (const EdgeObstaclePair& p : AllEdgeObstaclePairs(false)) {
+    count += EdgeObstacleDistance(x, p) < reach;
   }
   return count;
 }
@@ -368,6 +436,24 @@ bool ContactManager::ExtendPairs(const double* a, const double* b, const std::ve
       added = true;
     }
   }
+  for (const EdgeObstaclePair& pair : AllEdgeObstaclePairs(true)) {
+    const auto& slots = edge_slots_[pair.edge];
+    const double d = EdgeObstacleDistance(a, pair);
+    if (!(d < options_.d_hat + std::max(reach[slots[0]], reach[slots[1]]) +
+                  ObstacleTravel(pair.obstacle))) {
+      continue;
+    }
+    auto it = std::lower_bound(edge_obstacle_pairs_.begin(), edge_obstacle_pairs_.end(), pair);
+    if (it == edge_obstacle_pairs_.end() || !(*it == pair)) {
+      double alpha = 0.0;
+      PointSegmentDistance(options_.obstacles[pair.obstacle].EdgeFeature(pair.feature, tau_),
+                           EdgeEnd(a, pair.edge, 0), EdgeEnd(a, pair.edge, 1), &alpha);
+      edge_obstacle_alpha_.insert(
+          edge_obstacle_alpha_.begin() + (it - edge_obstacle_pairs_.begin()), alpha);
+      edge_obstacle_pairs_.insert(it, pair);
+      added = true;
+    }
+  }
   std::vector<EdgePair> candidates;
   EdgeCandidates(a, b, options_.d_hat + edge_grow, &candidates);
   for (const EdgePair& pair : candidates) {
@@ -395,6 +481,20 @@ void ContactManager::RebuildBarrierTerms() {
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.weights[pair.slot], &kappa_);
     potential_->AddTerm(std::move(term));
   }
+  for (size_t k = 0; k < edge_obstacle_pairs_.size(); ++k) {
+    const EdgeObstaclePair& pair = edge_obstacle_pairs_[k];
+    const auto& e = surface_.edges[pair.edge];
+    Term term;
+    term.kind = TermKind::kPotential;
+    term.family = kContactFamily;
+    term.impulsive = true;
+    term.nodes = {e[0], e[1]};
+    term.cost =
+        std::make_unique<EdgeObstacleGap>(dim_, &options_.obstacles[pair.obstacle], pair.feature,
+                                          &tau_, d_hat, margin_, &edge_obstacle_alpha_[k]);
+    term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.edge_weights[pair.edge], &kappa_);
+    potential_->AddTerm(std::move(term));
+  }
   for (const EdgePair& pair : edge_pairs_) {
     const auto& e = surface_.edges[pair.edge];
     Term term;
@@ -406,6 +506,24 @@ void ContactManager::RebuildBarrierTerms() {
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.weights[pair.slot], &kappa_);
     potential_->AddTerm(std::move(term));
   }
+}
+
+double ContactManager::LagEdgeAlpha(const double* x) {
+  double excess = 0.0;
+  for (size_t k = 0; k < edge_obstacle_pairs_.size(); ++k) {
+    const EdgeObstaclePair& p = edge_obstacle_pairs_[k];
+    const Obstacle& o = options_.obstacles[p.obstacle];
+    const Eigen::Vector3d a = EdgeEnd(x, p.edge, 0), b = EdgeEnd(x, p.edge, 1);
+    double alpha = 0.0;
+    PointSegmentDistance(o.EdgeFeature(p.feature, tau_), a, b, &alpha);
+    const double d = o.EdgeDistance(p.feature, a, b, tau_);
+    if (d > 0.0 && d < options_.d_hat) {
+      const double lagged = o.EdgePointDistance(p.feature, a, b, edge_obstacle_alpha_[k], tau_);
+      excess = std::max(excess, (lagged - d) / d);
+    }
+    edge_obstacle_alpha_[k] = alpha;
+  }
+  return excess;
 }
 
 void ContactManager::LagFriction(const double* x, double t) {
@@ -478,6 +596,7 @@ void ContactManager::AdvanceObstacles(const double* x) {
       first = std::min(first, o.TimeOfImpact(p, p, tau_, t_next_, margin_));
     }
   }
+  first = std::min(first, EdgeObstacleTimeOfImpact(x, x, tau_, t_next_));
   if (first > 1.0) {
     tau_ = t_next_;
   } else {
@@ -515,6 +634,16 @@ void ContactManager::UpdateKappa(const double* x_n) {
       g_b.segment<2>(2 * node) += scale * r.grad_p;
       g_b.segment<2>(2 * e[0]) += scale * r.grad_a;
       g_b.segment<2>(2 * e[1]) += scale * r.grad_b;
+    }
+    for (const EdgeObstaclePair& p : AllEdgeObstaclePairs(false)) {
+      Eigen::Vector3d grad[2];
+      const double d = EdgeObstacleDistance(x_n, p, &grad[0], &grad[1]);
+      if (!(d > 0.0 && d < d_hat)) continue;
+      const double scale = w_u * surface_.edge_weights[p.edge] * BarrierDerivative(d, d_hat);
+      for (int end = 0; end < 2; ++end) {
+        const int node = surface_.edges[p.edge][end];
+        for (int k = 0; k < dim_; ++k) g_b[dim_ * node + k] += scale * grad[end][k];
+      }
     }
     const TermKind kinds[3] = {TermKind::kInertia, TermKind::kPotential, TermKind::kDissipation};
     Eigen::VectorXd gradient(n);
@@ -554,8 +683,12 @@ void ContactManager::BeginStep(const double* x_n) {
   // Candidate pairs for this step: reach from the predictor's displacement.
   const std::vector<ObstaclePair> old_obstacle_pairs = obstacle_pairs_;
   const std::vector<EdgePair> old_edge_pairs = edge_pairs_;
+  const std::vector<EdgeObstaclePair> old_edge_obstacle_pairs = edge_obstacle_pairs_;
   obstacle_pairs_.clear();
   edge_pairs_.clear();
+  edge_obstacle_pairs_.clear();
+  edge_obstacle_alpha_.clear();
+  alpha_lags_ = 0;
   const Eigen::VectorXd& x_tilde = context_->x_tilde;
   std::vector<double> reach(surface_.nodes.size());
   double max_reach = 0.0;
@@ -580,7 +713,10 @@ void ContactManager::BeginStep(const double* x_n) {
   LagFriction(x_n, t_n_);
   lags_done_ = 1;
   AdvanceObstacles(x_n);
-  if (obstacle_pairs_ != old_obstacle_pairs || edge_pairs_ != old_edge_pairs) {
+  LagEdgeAlpha(x_n);
+  // Edge-obstacle terms point into edge_obstacle_alpha_, refilled above.
+  if (obstacle_pairs_ != old_obstacle_pairs || edge_pairs_ != old_edge_pairs ||
+      edge_obstacle_pairs_ != old_edge_obstacle_pairs || !edge_obstacle_pairs_.empty()) {
     RebuildBarrierTerms();
   }
   RebuildFrictionTerms();
@@ -595,7 +731,7 @@ bool ContactManager::RefreshTerms(const double* x) {
   // Pairs within d_hat of the solution that the set missed (with margin d_hat).
   const std::vector<double> reach(surface_.nodes.size(), options_.d_hat);
   const double gap_reach = options_.d_hat;
-  const size_t before = obstacle_pairs_.size() + edge_pairs_.size();
+  const size_t before = obstacle_pairs_.size() + edge_pairs_.size() + edge_obstacle_pairs_.size();
   // Only add pairs if some pair within d_hat is missing.
   bool missing = false;
   for (size_t s = 0; s < surface_.nodes.size() && !missing; ++s) {
@@ -604,6 +740,15 @@ bool ContactManager::RefreshTerms(const double* x) {
       if (options_.obstacles[o].Distance(NodePoint(x, s), tau_) < options_.d_hat &&
           !std::binary_search(obstacle_pairs_.begin(), obstacle_pairs_.end(),
                               ObstaclePair{static_cast<int>(s), static_cast<int>(o)})) {
+        missing = true;
+        break;
+      }
+    }
+  }
+  if (!missing) {
+    for (const EdgeObstaclePair& p : AllEdgeObstaclePairs(true)) {
+      if (EdgeObstacleDistance(x, p) < options_.d_hat &&
+          !std::binary_search(edge_obstacle_pairs_.begin(), edge_obstacle_pairs_.end(), p)) {
         missing = true;
         break;
       }
@@ -626,9 +771,21 @@ bool ContactManager::RefreshTerms(const double* x) {
   }
   if (missing || changed) {
     ExtendPairs(x, x, reach, gap_reach);
-    if (obstacle_pairs_.size() + edge_pairs_.size() != before) {
+    if (obstacle_pairs_.size() + edge_pairs_.size() + edge_obstacle_pairs_.size() != before) {
       RebuildBarrierTerms();
       changed = true;
+    }
+  }
+  // Edge-obstacle barriers use the closest point lagged at the start of the
+  // solve; re-lag and solve again while it is more than 1 % farther than the
+  // true closest point for a pair in reach (at most kMaxAlphaLags times).
+  if (!changed && !edge_obstacle_pairs_.empty() && alpha_lags_ < kMaxAlphaLags) {
+    std::vector<double> saved = edge_obstacle_alpha_;
+    if (LagEdgeAlpha(x) > kAlphaLagTolerance) {
+      ++alpha_lags_;
+      changed = true;
+    } else {
+      edge_obstacle_alpha_ = saved;
     }
   }
   if (!changed && friction_enabled_ && lags_done_ < friction_.iterations) {

@@ -3,10 +3,19 @@
 // the adaptive barrier stiffness, the lagged friction terms, and reports
 // min_distance / active_contacts.
 //
-// Pairs: contact nodes against obstacles, and (2D self-contact) boundary nodes
-// against boundary edges of other parts of the boundary (spatial-hash broad
-// phase). A pair's barrier term (family "contact") is
+// Pairs: contact nodes against obstacles, contact edges (2D boundary edges, 3D
+// cloth springs; contact/contact_surface.h) against the edge features of
+// spheres / circles and 2D boxes (Obstacle::EdgeDistance), and (2D
+// self-contact) boundary nodes against boundary edges of other parts of the
+// boundary (spatial-hash broad phase). A pair's barrier term (family "contact") is
 //   w_U kappa w_i B(d)  (contact/barrier.h)
+// with w_i the node's or the edge's weight. Edge-obstacle pairs have no
+// friction terms; their barrier's gap is the distance of the edge's closest
+// point lagged at the step start (re-lagged and re-solved while it is more
+// than 1 % farther than the true closest point, at most 3 times per step):
+// the true point-segment distance is concave in the segment's rocking mode and
+// Gauss-Newton then converged linearly (docs/contact.md). Continuous collision
+// detection, evaluation failures and the checks use the true distance.
 // and its friction term (family "friction", contact/friction.h) is
 //   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged.
 //
@@ -106,7 +115,8 @@ class ContactManager : public StepFilter {
   const ContactSurface& surface() const { return surface_; }
   const std::vector<Obstacle>& obstacles() const { return options_.obstacles; }
   int num_barrier_pairs() const {
-    return static_cast<int>(obstacle_pairs_.size() + edge_pairs_.size());
+    return static_cast<int>(obstacle_pairs_.size() + edge_pairs_.size() +
+                            edge_obstacle_pairs_.size());
   }
   int num_friction_terms() const { return num_friction_terms_; }
   std::string Summary() const;
@@ -131,6 +141,19 @@ class ContactManager : public StepFilter {
     bool operator==(const EdgePair& o) const { return slot == o.slot && edge == o.edge; }
   };
 
+  struct EdgeObstaclePair {
+    int edge;  // index into surface_.edges
+    int obstacle;
+    int feature;  // Obstacle::EdgeFeature
+    bool operator<(const EdgeObstaclePair& o) const {
+      if (edge != o.edge) return edge < o.edge;
+      return obstacle != o.obstacle ? obstacle < o.obstacle : feature < o.feature;
+    }
+    bool operator==(const EdgeObstaclePair& o) const {
+      return edge == o.edge && obstacle == o.obstacle && feature == o.feature;
+    }
+  };
+
   Eigen::Vector3d NodePoint(const double* x, int slot) const {
     return ToPoint(x + dim_ * surface_.nodes[slot], dim_);
   }
@@ -138,6 +161,22 @@ class ContactManager : public StepFilter {
     return Eigen::Vector2d(x[2 * node], x[2 * node + 1]);
   }
   bool PairHasFreeNode(const EdgePair& pair) const;
+  Eigen::Vector3d EdgeEnd(const double* x, int edge, int end) const {
+    return ToPoint(x + dim_ * surface_.edges[edge][end], dim_);
+  }
+  // Edge-feature distance of pair p at x at the current obstacle time.
+  double EdgeObstacleDistance(const double* x, const EdgeObstaclePair& p,
+                              Eigen::Vector3d* grad_a = nullptr,
+                              Eigen::Vector3d* grad_b = nullptr) const {
+    return options_.obstacles[p.obstacle].EdgeDistance(p.feature, EdgeEnd(x, p.edge, 0),
+                                                       EdgeEnd(x, p.edge, 1), tau_, grad_a, grad_b);
+  }
+  // Every edge-feature pair (edges with a free node when `free_only`).
+  std::vector<EdgeObstaclePair> AllEdgeObstaclePairs(bool free_only) const;
+  // First impact fraction of the edges moving linearly from a (obstacle time
+  // t_a) to b (time t_b) against the obstacles' edge features
+  // (Obstacle::EdgeTimeOfImpact, conservative); Obstacle::kNoImpact if none.
+  double EdgeObstacleTimeOfImpact(const double* a, const double* b, double t_a, double t_b) const;
 
   // 2D boundary edges against circles and boxes (an edge can cross a small
   // circle or a box corner with both end nodes outside; planes need no check: a
@@ -158,6 +197,9 @@ class ContactManager : public StepFilter {
   bool ExtendPairs(const double* a, const double* b, const std::vector<double>& reach,
                    double edge_grow);
   void RebuildBarrierTerms();
+  // Sets the lagged closest-point parameters at x; returns the largest
+  // relative excess (d_lagged - d) / d over pairs within d_hat before.
+  double LagEdgeAlpha(const double* x);
   void LagFriction(const double* x, double t);
   void RebuildFrictionTerms();
   // Moves the obstacle time towards t_next as far as x allows.
@@ -187,8 +229,14 @@ class ContactManager : public StepFilter {
   double tau_ = 0.0;
   Eigen::VectorXd accepted_;
 
-  std::vector<ObstaclePair> obstacle_pairs_;  // sorted
-  std::vector<EdgePair> edge_pairs_;          // sorted
+  std::vector<ObstaclePair> obstacle_pairs_;           // sorted
+  std::vector<EdgePair> edge_pairs_;                   // sorted
+  std::vector<EdgeObstaclePair> edge_obstacle_pairs_;  // sorted
+  // Lagged closest-point parameter of each edge-obstacle pair (its barrier's
+  // gap is the distance of that fixed point of the edge; see RefreshTerms).
+  std::vector<double> edge_obstacle_alpha_;
+  int alpha_lags_ = 0;
+  std::vector<std::array<int, 2>> edge_slots_;  // slots of each edge's nodes
 
   bool friction_enabled_ = false;
   FrictionOptions friction_;

@@ -108,6 +108,21 @@ ContactSurface BuildContactSurface(const Scene& scene) {
       }
       weight[i] = shortest > 0.0 ? shortest * shortest : 1.0;
     }
+    for (int i = 0; i < n; ++i) {
+      for (int j : g.neighbours[i]) {
+        if (j <= i) continue;
+        // Skip a spring that spans another node k (|ik| + |kj| = |ij| at rest).
+        const double l = Length(scene, i, j);
+        bool spans = false;
+        for (int k : g.neighbours[i]) {
+          if (k == j) continue;
+          const double via = Length(scene, i, k) + Length(scene, k, j);
+          spans |= std::binary_search(g.neighbours[j].begin(), g.neighbours[j].end(), k) &&
+                   via <= l * (1.0 + 1e-9);
+        }
+        if (!spans && l > 0.0) surface.edges.push_back({i, j});
+      }
+    }
   } else {
     std::vector<int> component(n, -1);
     std::set<std::pair<int, int>> edges;
@@ -145,6 +160,9 @@ ContactSurface BuildContactSurface(const Scene& scene) {
   for (const auto& [node, w] : weight) {
     surface.nodes.push_back(node);
     surface.weights.push_back(w);
+  }
+  for (const auto& e : surface.edges) {
+    surface.edge_weights.push_back(0.25 * (weight[e[0]] + weight[e[1]]));
   }
   return surface;
 }

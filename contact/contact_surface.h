@@ -12,6 +12,13 @@
 // 3D: every node is a contact node (cloth, particles); weight: the node's area,
 // approximated as the square of its shortest spring (exact, a^2, inside a square
 // grid of spacing a); 1 for a node without springs.
+// Edges (checked against spheres / circles and 2D boxes, contact/obstacle.h):
+// 2D the boundary edges; 3D every spring segment of the cloth except those
+// that span another node (the bending springs of a grid: their segment is not
+// part of the surface, it passes through the middle node at rest), i.e. the
+// structural springs and both shear diagonals. Weight of an edge: half the
+// mean weight of its two nodes (2D: about half its length; 3D: a^2 / 2 in a
+// grid), so an edge's barrier is on the scale of a node's.
 #pragma once
 
 #include <array>
@@ -24,7 +31,8 @@ namespace ipstep {
 struct ContactSurface {
   std::vector<int> nodes;                 // contact nodes, ascending
   std::vector<double> weights;            // per entry of `nodes`
-  std::vector<std::array<int, 2>> edges;  // 2D boundary edges (both nodes in `nodes`)
+  std::vector<std::array<int, 2>> edges;  // 2D: boundary edges; 3D: springs (both nodes in `nodes`)
+  std::vector<double> edge_weights;       // per entry of `edges`
 };
 
 ContactSurface BuildContactSurface(const Scene& scene);

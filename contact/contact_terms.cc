@@ -30,6 +30,41 @@ bool PointObstacleGap::Evaluate(double const* const* x, double* residuals,
   return true;
 }
 
+EdgeObstacleGap::EdgeObstacleGap(int dimension, const Obstacle* obstacle, int feature,
+                                 const double* time, double d_hat, double min_distance,
+                                 const double* alpha)
+    : dimension_(dimension),
+      obstacle_(obstacle),
+      feature_(feature),
+      time_(time),
+      d_hat_(d_hat),
+      min_distance_(min_distance),
+      alpha_(alpha) {
+  set_num_residuals(1);
+  for (int b = 0; b < 2; ++b) mutable_parameter_block_sizes()->push_back(dimension);
+}
+
+bool EdgeObstacleGap::Evaluate(double const* const* x, double* residuals,
+                               double** jacobians) const {
+  Eigen::Vector3d grad[2];
+  const Eigen::Vector3d a = ToPoint(x[0], dimension_), b = ToPoint(x[1], dimension_);
+  double d = obstacle_->EdgeDistance(feature_, a, b, *time_, &grad[0], &grad[1]);
+  if (!(d > min_distance_)) return false;
+  if (alpha_ != nullptr) {
+    d = obstacle_->EdgePointDistance(feature_, a, b, *alpha_, *time_, &grad[0], &grad[1]);
+  }
+  const double u = d_hat_ - d;
+  const bool active = u > 0.0;
+  residuals[0] = active ? u : 0.0;
+  if (jacobians != nullptr) {
+    for (int block = 0; block < 2; ++block) {
+      if (jacobians[block] == nullptr) continue;
+      for (int k = 0; k < dimension_; ++k) jacobians[block][k] = active ? -grad[block][k] : 0.0;
+    }
+  }
+  return true;
+}
+
 PointEdgeGap::PointEdgeGap(double d_hat, double min_distance)
     : d_hat_(d_hat), min_distance_(min_distance) {
   set_num_residuals(1);

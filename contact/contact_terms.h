@@ -36,6 +36,27 @@ class PointObstacleGap : public ceres::CostFunction {
   double min_distance_;
 };
 
+// Edge [a, b] (blocks 0, 1, `dimension` each) against an edge feature of an
+// obstacle (sphere centre or 2D box corner, Obstacle::EdgeDistance).
+class EdgeObstacleGap : public ceres::CostFunction {
+ public:
+  // `alpha` (read at every evaluation; null: the true closest point): the
+  // barrier's gap is the distance of the fixed point a + alpha (b - a), while
+  // evaluation fails when the true segment distance is at most min_distance.
+  EdgeObstacleGap(int dimension, const Obstacle* obstacle, int feature, const double* time,
+                  double d_hat, double min_distance, const double* alpha = nullptr);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  int dimension_;
+  const Obstacle* obstacle_;
+  int feature_;
+  const double* time_;
+  double d_hat_;
+  double min_distance_;
+  const double* alpha_;
+};
+
 // 2D: point p (block 0) against the edge [a, b] (blocks 1, 2).
 class PointEdgeGap : public ceres::CostFunction {
  public:

@@ -44,7 +44,54 @@ struct Obstacle {
                       double margin) const;
 
   static constexpr double kNoImpact = 2.0;
+
+  // Edges (segments [a, b] between two contact nodes) against the obstacle.
+  // A segment can enter a sphere / circle with both end points outside only
+  // through its interior coming too close to the centre, and a 2D box only
+  // where a corner crosses it; the end points are contact nodes with pairs of
+  // their own. So an edge's pairs are with the obstacle's "edge features":
+  // sphere: its centre (radius R), 2D box: its four corners (radius 0); planes
+  // (a segment meets a half-space only where an end point does) and 3D boxes
+  // (not handled: box edges against segments) have none.
+  int NumEdgeFeatures() const;
+  // World position of a feature at time t.
+  Eigen::Vector3d EdgeFeature(int feature, double t) const;
+  // d = |c - closest point of [a, b]| - R for feature c at time t (negative:
+  // the segment is inside the sphere); gradients with respect to a and b when
+  // not null: (1 - alpha) n and alpha n, n the unit direction from c to the
+  // closest point a + alpha (b - a) (alpha is the minimiser, so it does not
+  // contribute; zero when the segment passes through c).
+  double EdgeDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t,
+                      Eigen::Vector3d* grad_a = nullptr, Eigen::Vector3d* grad_b = nullptr) const;
+  // The same for the fixed point a + alpha (b - a) of the segment (>= the
+  // segment's distance): |a + alpha (b - a) - c| - R, gradients (1 - alpha) n
+  // and alpha n.
+  double EdgePointDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           double alpha, double t, Eigen::Vector3d* grad_a = nullptr,
+                           Eigen::Vector3d* grad_b = nullptr) const;
+  // Continuous collision detection of the segment moving linearly from
+  // [a0, b0] (obstacle time t0) to [a1, b1] (obstacle time t1) against a
+  // feature. Conservative target, as IPC's advancement: returns the first
+  // fraction s at which the gap d(s) falls to the goal max(margin,
+  // kEdgeGapFraction d(0)) (a path is refused once its gap falls below a tenth
+  // of the gap it started with; the gap never reaches 0 before s), 0 if
+  // d(0) <= margin, kNoImpact if d stays above the goal over the whole path.
+  // Computed from the roots of the polynomials whose sign changes mark the
+  // events (end point at distance R + goal, line at distance R + goal, closest
+  // point changing piece), with a quick rejection when d(0) exceeds the goal by
+  // more than the largest end-point motion (every point of the segment moves by
+  // at most that much).
+  double EdgeTimeOfImpact(int feature, const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
+                          const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, double t0,
+                          double t1, double margin) const;
+
+  static constexpr double kEdgeGapFraction = 0.1;
 };
+
+// Distance from point c to the segment [a, b]; alpha of the closest point
+// a + alpha (b - a) when not null.
+double PointSegmentDistance(const Eigen::Vector3d& c, const Eigen::Vector3d& a,
+                            const Eigen::Vector3d& b, double* alpha = nullptr);
 
 // Point with `dimension` coordinates -> Vector3d (trailing zeros).
 inline Eigen::Vector3d ToPoint(const double* x, int dimension) {

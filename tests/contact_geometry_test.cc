@@ -278,6 +278,118 @@ TEST(PointEdge, ContinuousCollisionDetection) {
   EXPECT_FALSE(SegmentsIntersect({0, 0}, {1, 0}, {0, 1}, {1, 1}));
 }
 
+// Edge-obstacle distance: |c - closest point of [a, b]| - R, for sphere
+// centres (2D, 3D, moving) and 2D box corners, against finite differences with
+// probes in d > 0: interior closest points and clamped ones (end points).
+TEST(EdgeObstacle, DistanceGradientsMatchFiniteDifferences) {
+  const double t = 0.4;
+  struct Probe {
+    Obstacle obstacle;
+    int feature;
+    Eigen::Vector3d a, b;
+  };
+  std::vector<Probe> probes;
+  for (int dim : {2, 3}) {
+    const Obstacle s = Sphere(dim);
+    const Eigen::Vector3d c = s.EdgeFeature(0, t);
+    const Eigen::Vector3d z = dim == 3 ? Eigen::Vector3d(0, 0, 0.1) : Eigen::Vector3d::Zero();
+    probes.push_back(
+        {s, 0, c + Eigen::Vector3d(-0.8, 0.6, 0) + z, c + Eigen::Vector3d(0.7, 0.5, 0)});
+    probes.push_back(
+        {s, 0, c + Eigen::Vector3d(0.6, 0.3, 0), c + Eigen::Vector3d(1.5, 0.9, 0) - z});
+  }
+  const Obstacle box = Box(2);
+  for (int corner = 0; corner < 4; ++corner) {
+    const Eigen::Vector3d c = box.EdgeFeature(corner, t);
+    probes.push_back(
+        {box, corner, c + Eigen::Vector3d(-0.2, 0.05, 0), c + Eigen::Vector3d(0.1, 0.2, 0)});
+  }
+  for (const Probe& p : probes) {
+    Eigen::Vector3d ga, gb;
+    const double d = p.obstacle.EdgeDistance(p.feature, p.a, p.b, t, &ga, &gb);
+    ASSERT_GT(d, 0.0);
+    for (int end = 0; end < 2; ++end) {
+      for (int k = 0; k < p.obstacle.dimension; ++k) {
+        const double h = 1e-6;
+        Eigen::Vector3d ap = p.a, am = p.a, bp = p.b, bm = p.b;
+        (end == 0 ? ap : bp)[k] += h;
+        (end == 0 ? am : bm)[k] -= h;
+        const double fd = (p.obstacle.EdgeDistance(p.feature, ap, bp, t) -
+                           p.obstacle.EdgeDistance(p.feature, am, bm, t)) /
+                          (2 * h);
+        EXPECT_NEAR((end == 0 ? ga : gb)[k], fd, 1e-7)
+            << ObstacleTypeName(p.obstacle.type) << " feature " << p.feature << " end " << end;
+      }
+    }
+  }
+  // Closed forms: a horizontal segment 0.1 above a unit circle's top.
+  Obstacle circle;
+  circle.type = ObstacleType::kSphere;
+  circle.radius = 1.0;
+  EXPECT_NEAR(circle.EdgeDistance(0, {-2, 1.1, 0}, {3, 1.1, 0}, 0), 0.1, 1e-15);
+  EXPECT_NEAR(circle.EdgeDistance(0, {0, 1.1, 0}, {3, 1.1, 0}, 0), 0.1, 1e-15);
+  EXPECT_NEAR(circle.EdgeDistance(0, {1, 1, 0}, {3, 1, 0}, 0), std::sqrt(2.0) - 1.0, 1e-15);
+  EXPECT_EQ(Plane2D().NumEdgeFeatures(), 0);
+  EXPECT_EQ(Box(3).NumEdgeFeatures(), 0);
+  EXPECT_EQ(Box(2).NumEdgeFeatures(), 4);
+}
+
+// Conservative advancement of a moving segment against a circle / box corner.
+TEST(EdgeObstacle, ContinuousCollisionDetection) {
+  Obstacle circle;
+  circle.type = ObstacleType::kSphere;
+  circle.radius = 0.01;
+  // A 0.2 m bar falling from y = 1 to y = -1, its nodes beside the circle: the
+  // gap 1 - 0.01 falls to the goal 0.1 d(0) at s = 0.9 * 0.99 / 2.
+  const double s =
+      circle.EdgeTimeOfImpact(0, {-0.1, 1, 0}, {-0.1, -1, 0}, {0.1, 1, 0}, {0.1, -1, 0}, 0, 0, 0);
+  EXPECT_GE(s, 0.0);
+  EXPECT_LE(s, 0.9 * 0.99 / 2.0 + 1e-12);
+  EXPECT_GE(s, 0.8 * 0.99 / 2.0 - 1e-12);  // stops with the gap within [goal, 2 goal]
+  // Its right end passing 0.015 beside the centre (outside the circle): caught.
+  EXPECT_LE(circle.EdgeTimeOfImpact(0, {-0.185, 1, 0}, {-0.185, -1, 0}, {0.015, 1, 0},
+                                    {0.015, -1, 0}, 0, 0, 0),
+            1.0);
+  // 3D: a bar along x at z = 0.1 sweeping down past a sphere of radius 0.2; its
+  // nodes' paths stay 0.51 from the centre, only the interior comes close.
+  Obstacle sphere;
+  sphere.type = ObstacleType::kSphere;
+  sphere.dimension = 3;
+  sphere.radius = 0.2;
+  const double hit = sphere.EdgeTimeOfImpact(0, {-0.5, 1, 0.1}, {-0.5, -1, 0.1}, {0.5, 1, 0.1},
+                                             {0.5, -1, 0.1}, 0, 0, 0);
+  EXPECT_LE(hit, 1.0);
+  // Stopped before the interior enters: the gap at the reported fraction is
+  // above the margin, and every node path misses the sphere.
+  EXPECT_GT(sphere.EdgeDistance(0, {-0.5, 1 - 2 * hit, 0.1}, {0.5, 1 - 2 * hit, 0.1}, 0), 0.0);
+  EXPECT_GT(sphere.TimeOfImpact({-0.5, 1, 0.1}, {-0.5, -1, 0.1}, 0, 0, 0), 1.0);
+  // A path that stays 0.24 clear (a quarter of its initial gap): no impact; one
+  // that ends 0.05 clear is refused all the same (conservative: below
+  // kEdgeGapFraction = 0.1 of the initial gap).
+  EXPECT_GT(circle.EdgeTimeOfImpact(0, {-0.1, 1, 0}, {-0.1, 0.25, 0}, {0.1, 1, 0}, {0.1, 0.25, 0},
+                                    0, 0, 0),
+            1.0);
+  EXPECT_LE(circle.EdgeTimeOfImpact(0, {-0.1, 1, 0}, {-0.1, 0.06, 0}, {0.1, 1, 0}, {0.1, 0.06, 0},
+                                    0, 0, 0),
+            1.0);
+  // A moving circle (velocity +y) sweeps into a resting bar: impact from time 0
+  // to 1 (the relative path is the falling bar's).
+  circle.velocity = Eigen::Vector3d(0, 2, 0);
+  EXPECT_LE(
+      circle.EdgeTimeOfImpact(0, {-0.1, 1, 0}, {-0.1, 1, 0}, {0.1, 1, 0}, {0.1, 1, 0}, 0, 1, 0),
+      0.5);
+  // Box corner (2D): a bar sweeping down across the top-right corner of Box(2)
+  // at (1, 0.5) (the bar's line x + y from 1.7 to 1.3) with both end points
+  // missing the box.
+  const Obstacle box = Box(2);
+  EXPECT_LE(
+      box.EdgeTimeOfImpact(3, {0.9, 1, 0}, {1.1, -0.5, 0}, {1.5, 1, 0}, {1.7, -0.5, 0}, 0, 0, 0),
+      1.0);
+  // Starting within the margin: 0.
+  EXPECT_EQ(box.EdgeTimeOfImpact(3, {0, 0.5, 0}, {0, 1, 0}, {2, 0.5, 0}, {2, 1, 0}, 0, 0, 1e-9),
+            0.0);
+}
+
 TEST(SpatialHash, FindsOverlapsOnly) {
   SpatialHash hash(2, 0.1);
   hash.Insert(0, {0, 0, 0}, {0.05, 0.05, 0});
@@ -337,6 +449,24 @@ TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
   const Eigen::Vector3d inside = centre;
   const double* y[1] = {inside.data()};
   EXPECT_FALSE(gap.Evaluate(y, &residual, nullptr));
+
+  // Edge against the sphere's centre: the closest point 0.03 outside, interior.
+  const Eigen::Vector3d n(0.0, 0.6, 0.8), tangent(1, 0, 0);
+  const Eigen::Vector3d ea = centre + (sphere.radius + 0.03) * n - 0.2 * tangent;
+  const Eigen::Vector3d eb = centre + (sphere.radius + 0.03) * n + 0.3 * tangent;
+  EdgeObstacleGap edge_obstacle(3, &sphere, 0, &time, d_hat, 0.0);
+  CheckJacobian(edge_obstacle, {{ea[0], ea[1], ea[2]}, {eb[0], eb[1], eb[2]}});
+  const double* e[2] = {ea.data(), eb.data()};
+  ASSERT_TRUE(edge_obstacle.Evaluate(e, &residual, nullptr));
+  EXPECT_NEAR(residual, d_hat - 0.03, 1e-14);
+  // A segment through the sphere with both end points outside: infeasible.
+  const Eigen::Vector3d fa = centre - 2.0 * tangent, fb = centre + 2.0 * tangent;
+  const double* f[2] = {fa.data(), fb.data()};
+  EXPECT_FALSE(edge_obstacle.Evaluate(f, &residual, nullptr));
+  // 2D box corner (lower left of Box(2) at (-1, -0.5)) against an edge.
+  const Obstacle box = Box(2);
+  EdgeObstacleGap corner_gap(2, &box, 0, &time, d_hat, 0.0);
+  CheckJacobian(corner_gap, {{-1.3, -0.47}, {-0.8, -0.53}});
 
   PointEdgeGap edge_gap(d_hat, 0.0);
   CheckJacobian(edge_gap, {{0.4, 0.03}, {0.0, 0.0}, {1.0, 0.01}});
