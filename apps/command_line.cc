@@ -50,4 +50,9 @@ void CheckCommandLine(int argc, char** argv) {
   }
 }
 
+bool FlagIsDefault(const char* name) {
+  gflags::CommandLineFlagInfo info;
+  return !gflags::GetCommandLineFlagInfo(name, &info) || info.is_default;
+}
+
 }  // namespace ipstep

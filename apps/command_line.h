@@ -8,4 +8,7 @@ namespace ipstep {
 // Throws InputError. Call before gflags::ParseCommandLineFlags.
 void CheckCommandLine(int argc, char** argv);
 
+// True if the flag `name` (without dashes) was not given on the command line.
+bool FlagIsDefault(const char* name);
+
 }  // namespace ipstep

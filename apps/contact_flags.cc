@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "apps/command_line.h"
 #include "contact/contact_overrides.h"
 #include "core/input_error.h"
 #include "problems/scene.h"
@@ -19,33 +20,27 @@ DEFINE_int32(friction_iterations, 0,
 namespace ipstep {
 namespace {
 
-bool IsDefault(const char* name) {
-  gflags::CommandLineFlagInfo info;
-  gflags::GetCommandLineFlagInfo(name, &info);
-  return info.is_default;
-}
-
 ContactOverrides OverridesFromFlags() {
   ContactOverrides o;
-  if (!IsDefault("contact_kappa")) {
+  if (!FlagIsDefault("contact_kappa")) {
     if (!std::isfinite(FLAGS_contact_kappa) || !(FLAGS_contact_kappa > 0.0)) {
       throw InputError("flag", "--contact_kappa", "must be a finite number > 0");
     }
     o.kappa = FLAGS_contact_kappa;
   }
-  if (!IsDefault("contact_dhat")) {
+  if (!FlagIsDefault("contact_dhat")) {
     if (!std::isfinite(FLAGS_contact_dhat) || !(FLAGS_contact_dhat > 0.0)) {
       throw InputError("flag", "--contact_dhat", "must be a finite number > 0");
     }
     o.d_hat = FLAGS_contact_dhat;
   }
-  if (!IsDefault("friction_mu")) {
+  if (!FlagIsDefault("friction_mu")) {
     if (!std::isfinite(FLAGS_friction_mu) || !(FLAGS_friction_mu >= 0.0)) {
       throw InputError("flag", "--friction_mu", "must be a finite number >= 0");
     }
     o.mu = FLAGS_friction_mu;
   }
-  if (!IsDefault("friction_iterations")) {
+  if (!FlagIsDefault("friction_iterations")) {
     if (FLAGS_friction_iterations < 1 || FLAGS_friction_iterations > 100) {
       throw InputError("flag", "--friction_iterations", "must be an integer in [1, 100]");
     }
@@ -71,7 +66,7 @@ void CheckContactFlagsApply(const Scene& scene) {
                     {"friction_mu", "friction"},
                     {"friction_iterations", "friction"}};
   for (const auto& use : uses) {
-    if (!IsDefault(use.flag) && !scene.HasEffect(use.effect)) {
+    if (!FlagIsDefault(use.flag) && !scene.HasEffect(use.effect)) {
       throw InputError("flag", std::string("--") + use.flag,
                        "applies to scenes with the '" + std::string(use.effect) +
                            "' effect; scene " + scene.source + " has none");

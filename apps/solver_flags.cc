@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "apps/command_line.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 
@@ -42,14 +43,8 @@ DEFINE_int32(grid_size, 0, "Override the node count per side of a scene's grid; 
 namespace ipstep {
 namespace {
 
-bool IsDefault(const char* name) {
-  gflags::CommandLineFlagInfo info;
-  gflags::GetCommandLineFlagInfo(name, &info);
-  return info.is_default;
-}
-
 void RequireOptimizerKind(const char* flag, bool trust_region, Optimizer optimizer) {
-  if (!IsDefault(flag) && IsTrustRegion(optimizer) != trust_region) {
+  if (!FlagIsDefault(flag) && IsTrustRegion(optimizer) != trust_region) {
     throw InputError(
         "flag", std::string("--") + flag,
         std::string("applies to ") +
@@ -65,9 +60,9 @@ SimulationOptions SimulationOptionsFromFlags() {
   o.integrator.name = FLAGS_integrator;
   o.integrator.newmark_beta = FLAGS_newmark_beta;
   o.integrator.newmark_gamma = FLAGS_newmark_gamma;
-  if (!IsDefault("newmark_beta") || !IsDefault("newmark_gamma")) {
+  if (!FlagIsDefault("newmark_beta") || !FlagIsDefault("newmark_gamma")) {
     if (FLAGS_integrator != "newmark") {
-      throw InputError("flag", IsDefault("newmark_beta") ? "--newmark_gamma" : "--newmark_beta",
+      throw InputError("flag", FlagIsDefault("newmark_beta") ? "--newmark_gamma" : "--newmark_beta",
                        "applies to --integrator=newmark only");
     }
   }

@@ -15,6 +15,7 @@
 #include "contact/obstacle.h"
 #include "contact/point_edge.h"
 #include "contact/spatial_hash.h"
+#include "tests/finite_differences.h"
 
 namespace ipstep {
 namespace {
@@ -405,32 +406,7 @@ TEST(SpatialHash, FindsOverlapsOnly) {
 // Jacobian of a cost function against central differences, block by block.
 void CheckJacobian(const ceres::CostFunction& cost, std::vector<std::vector<double>> x,
                    double h = 1e-7, double tolerance = 1e-6) {
-  const int m = cost.num_residuals();
-  const auto& sizes = cost.parameter_block_sizes();
-  std::vector<const double*> parameters;
-  for (auto& block : x) parameters.push_back(block.data());
-  std::vector<double> r(m), rp(m), rm(m);
-  std::vector<std::vector<double>> jac(sizes.size());
-  std::vector<double*> jac_ptrs;
-  for (size_t b = 0; b < sizes.size(); ++b) {
-    jac[b].resize(m * sizes[b]);
-    jac_ptrs.push_back(jac[b].data());
-  }
-  ASSERT_TRUE(cost.Evaluate(parameters.data(), r.data(), jac_ptrs.data()));
-  for (size_t b = 0; b < sizes.size(); ++b) {
-    for (int k = 0; k < sizes[b]; ++k) {
-      const double saved = x[b][k];
-      x[b][k] = saved + h;
-      ASSERT_TRUE(cost.Evaluate(parameters.data(), rp.data(), nullptr));
-      x[b][k] = saved - h;
-      ASSERT_TRUE(cost.Evaluate(parameters.data(), rm.data(), nullptr));
-      x[b][k] = saved;
-      for (int i = 0; i < m; ++i) {
-        EXPECT_NEAR(jac[b][i * sizes[b] + k], (rp[i] - rm[i]) / (2 * h), tolerance)
-            << "block " << b << " coordinate " << k << " residual " << i;
-      }
-    }
-  }
+  testing::ExpectJacobianMatchesFiniteDifferences(cost, std::move(x), h, tolerance);
 }
 
 TEST(ContactTerms, JacobiansMatchFiniteDifferences) {

@@ -1,8 +1,6 @@
 // The ipstep program with contact: bad contact parameters and flags give one
 // error line and exit code 2; contact scenes run and report min_distance and
 // active_contacts in the --stats CSV.
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -12,26 +10,16 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/run_program.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using Outcome = ipstep::testing::ProgramOutcome;
 
 Outcome RunIpstep(const std::string& arguments) {
-  const std::string command = std::string(IPSTEP_BINARY) + " " + arguments + " 2>&1";
-  Outcome outcome;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return outcome;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) outcome.output.append(buffer, n);
-  const int status = pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return outcome;
+  return ipstep::testing::RunProgram(IPSTEP_BINARY, arguments);
 }
 
 class ContactProgram : public ::testing::Test {

@@ -19,45 +19,17 @@
 #include "energies/rayleigh_mass_damping.h"
 #include "energies/rayleigh_stiffness_damping.h"
 #include "energies/squared_strain_spring.h"
+#include "tests/finite_differences.h"
 
 namespace ipstep {
 namespace {
 
-// Checks the analytic (autodiff) Jacobian of `cost` at `x` (one block per node).
+// The analytic (autodiff) Jacobian of `cost` at `x` (one block per node) against
+// central differences, to 1e-6 of the Jacobian's largest entry.
 void ExpectJacobianMatchesFiniteDifferences(const ceres::CostFunction& cost,
-                                            std::vector<std::vector<double>> x) {
-  const int m = cost.num_residuals();
-  const auto& sizes = cost.parameter_block_sizes();
-  std::vector<const double*> params;
-  std::vector<std::vector<double>> jac(sizes.size());
-  std::vector<double*> jac_ptrs;
-  for (size_t b = 0; b < sizes.size(); ++b) {
-    params.push_back(x[b].data());
-    jac[b].resize(m * sizes[b]);
-    jac_ptrs.push_back(jac[b].data());
-  }
-  std::vector<double> r(m), rp(m), rm(m);
-  ASSERT_TRUE(cost.Evaluate(params.data(), r.data(), jac_ptrs.data()));
-  double scale = 1e-12;
-  for (auto& block : jac) {
-    for (double v : block) scale = std::max(scale, std::abs(v));
-  }
-  const double h = 1e-6;
-  for (size_t b = 0; b < sizes.size(); ++b) {
-    for (int k = 0; k < sizes[b]; ++k) {
-      const double saved = x[b][k];
-      x[b][k] = saved + h;
-      ASSERT_TRUE(cost.Evaluate(params.data(), rp.data(), nullptr));
-      x[b][k] = saved - h;
-      ASSERT_TRUE(cost.Evaluate(params.data(), rm.data(), nullptr));
-      x[b][k] = saved;
-      for (int i = 0; i < m; ++i) {
-        const double fd = (rp[i] - rm[i]) / (2 * h);
-        EXPECT_NEAR(jac[b][i * sizes[b] + k], fd, 1e-6 * scale)
-            << "block " << b << " coordinate " << k << " residual " << i;
-      }
-    }
-  }
+                                            const std::vector<std::vector<double>>& x) {
+  testing::ExpectJacobianMatchesFiniteDifferences(cost, x, 1e-6,
+                                                  1e-6 * testing::JacobianScale(cost, x));
 }
 
 template <int D>

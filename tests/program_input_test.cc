@@ -1,7 +1,5 @@
 // The ipstep program on bad input: one clear error naming the file or flag and
 // key, exit code 2, never a crash or an abort. And the good path: outputs.
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,26 +8,16 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/run_program.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using Outcome = ipstep::testing::ProgramOutcome;
 
 Outcome RunIpstep(const std::string& arguments) {
-  const std::string command = std::string(IPSTEP_BINARY) + " " + arguments + " 2>&1";
-  Outcome outcome;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return outcome;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) outcome.output.append(buffer, n);
-  const int status = pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return outcome;
+  return ipstep::testing::RunProgram(IPSTEP_BINARY, arguments);
 }
 
 class ProgramInput : public ::testing::Test {
