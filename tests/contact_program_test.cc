@@ -22,23 +22,8 @@ Outcome RunIpstep(const std::string& arguments) {
   return ipstep::testing::RunProgram(IPSTEP_BINARY, arguments);
 }
 
-class ContactProgram : public ::testing::Test {
+class ContactProgram : public ipstep::testing::ProgramTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("ipstep_contact_program_" +
-            std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path) << text;
-    return path.string();
-  }
-
   void ExpectInputError(const std::string& arguments, const std::string& key) {
     const Outcome o = RunIpstep(arguments);
     EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
@@ -46,8 +31,6 @@ class ContactProgram : public ::testing::Test {
     EXPECT_EQ(o.output.find("Check failed"), std::string::npos) << o.output;
     EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
   }
-
-  fs::path dir_;
 };
 
 std::string Particle(const std::string& contact, const std::string& friction = "") {

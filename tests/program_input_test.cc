@@ -20,23 +20,8 @@ Outcome RunIpstep(const std::string& arguments) {
   return ipstep::testing::RunProgram(IPSTEP_BINARY, arguments);
 }
 
-class ProgramInput : public ::testing::Test {
+class ProgramInput : public ipstep::testing::ProgramTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("ipstep_program_input_" +
-            std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path) << text;
-    return path.string();
-  }
-
   void ExpectInputError(const std::string& arguments, const std::string& where,
                         const std::string& key) {
     const Outcome o = RunIpstep(arguments);
@@ -47,8 +32,6 @@ class ProgramInput : public ::testing::Test {
     // One error line.
     EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
   }
-
-  fs::path dir_;
 };
 
 const char* kValidScene = R"({
