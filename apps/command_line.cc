@@ -1,5 +1,6 @@
 #include "apps/command_line.h"
 
+#include <sstream>
 #include <string>
 
 #include <gflags/gflags.h>
@@ -53,6 +54,15 @@ void CheckCommandLine(int argc, char** argv) {
 bool FlagIsDefault(const char* name) {
   gflags::CommandLineFlagInfo info;
   return !gflags::GetCommandLineFlagInfo(name, &info) || info.is_default;
+}
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
 }
 
 }  // namespace ipstep

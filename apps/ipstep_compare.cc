@@ -10,12 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gflags/gflags.h>
 
+#include "apps/command_line.h"
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/solver_flags.h"
@@ -31,15 +31,6 @@ DEFINE_string(optimizers, "newton,dogleg,lbfgs,ncg",
 
 namespace ipstep {
 namespace {
-
-std::vector<std::string> Split(const std::string& list) {
-  std::vector<std::string> items;
-  std::stringstream stream(list);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
 
 struct RunResult {
   int failed = 0;
@@ -87,8 +78,8 @@ int Run() {
   SimulationOptions base = SimulationOptionsFromFlags();
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
   CheckContactFlagsApply(scene);
-  const std::vector<std::string> integrators = Split(FLAGS_integrators);
-  const std::vector<std::string> optimizers = Split(FLAGS_optimizers);
+  const std::vector<std::string> integrators = SplitList(FLAGS_integrators);
+  const std::vector<std::string> optimizers = SplitList(FLAGS_optimizers);
   for (const std::string& name : integrators) {
     IntegratorOptions check = base.integrator;
     check.name = name;

@@ -68,15 +68,6 @@ namespace ipstep {
 namespace bench {
 namespace {
 
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 std::vector<double> NumberList(const std::string& flag, const std::string& text) {
   std::vector<double> numbers;
   for (const std::string& item : SplitList(text)) {

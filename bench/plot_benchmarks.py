@@ -75,6 +75,17 @@ def label_of(r):
     return r["integrator"] if opt == "none" else f'{r["integrator"]} × {opt}'
 
 
+def tightest_runs(sub):
+    """The tightest tolerance among `sub` and its runs (plus explicit runs, which have
+    no tolerance) grouped by integrator x optimiser label."""
+    tight = min((r["tolerance"] for r in sub), default=math.nan)
+    groups = defaultdict(list)
+    for r in sub:
+        if r["tolerance"] == tight or r["optimizer"] == "none":
+            groups[label_of(r)].append(r)
+    return tight, groups
+
+
 def save(fig, out, name):
     os.makedirs(out, exist_ok=True)
     for ext in ("png", "svg"):
@@ -141,11 +152,7 @@ def work_precision(rows, out):
     scenes, fig, axes = scene_grid(rows)
     for scene, ax in zip(scenes, axes):
         sub = [r for r in rows if scene_name(r) == scene and usable(r) and r["position_error"] > 0]
-        tight = min((r["tolerance"] for r in sub), default=math.nan)
-        groups = defaultdict(list)
-        for r in sub:
-            if r["tolerance"] == tight or r["optimizer"] == "none":
-                groups[label_of(r)].append(r)
+        tight, groups = tightest_runs(sub)
         for label, runs in sorted(groups.items()):
             runs.sort(key=lambda r: r["dt"])
             slope = fit_slope([r["dt"] for r in runs], [r["position_error"] for r in runs])
@@ -183,11 +190,7 @@ def work_precision(rows, out):
     scenes, fig, axes = scene_grid(rows)
     for scene, ax in zip(scenes, axes):
         sub = [r for r in rows if scene_name(r) == scene and usable(r) and r["energy_drift"] > 0]
-        tight = min((r["tolerance"] for r in sub), default=math.nan)
-        groups = defaultdict(list)
-        for r in sub:
-            if r["tolerance"] == tight or r["optimizer"] == "none":
-                groups[label_of(r)].append(r)
+        tight, groups = tightest_runs(sub)
         for label, runs in sorted(groups.items()):
             runs.sort(key=lambda r: r["dt"])
             color, marker = style(label)

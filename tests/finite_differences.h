@@ -11,21 +11,36 @@
 
 namespace ipstep::testing {
 
+// Residuals and row-major Jacobian blocks of `cost` at x; false if it fails there.
+inline bool EvaluateWithJacobian(const ceres::CostFunction& cost,
+                                 const std::vector<std::vector<double>>& x,
+                                 std::vector<double>* residuals,
+                                 std::vector<std::vector<double>>* jacobian) {
+  const int m = cost.num_residuals();
+  const auto& sizes = cost.parameter_block_sizes();
+  std::vector<const double*> parameters;
+  for (const auto& block : x) parameters.push_back(block.data());
+  jacobian->assign(sizes.size(), {});
+  std::vector<double*> jacobian_blocks;
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    (*jacobian)[b].resize(m * sizes[b]);
+    jacobian_blocks.push_back((*jacobian)[b].data());
+  }
+  residuals->resize(m);
+  return cost.Evaluate(parameters.data(), residuals->data(), jacobian_blocks.data());
+}
+
 inline void ExpectJacobianMatchesFiniteDifferences(const ceres::CostFunction& cost,
                                                    std::vector<std::vector<double>> x, double step,
                                                    double tolerance) {
   const int m = cost.num_residuals();
   const auto& sizes = cost.parameter_block_sizes();
+  std::vector<double> r;
+  std::vector<std::vector<double>> jacobian;
+  ASSERT_TRUE(EvaluateWithJacobian(cost, x, &r, &jacobian));
   std::vector<const double*> parameters;
   for (auto& block : x) parameters.push_back(block.data());
-  std::vector<std::vector<double>> jacobian(sizes.size());
-  std::vector<double*> jacobian_blocks;
-  for (size_t b = 0; b < sizes.size(); ++b) {
-    jacobian[b].resize(m * sizes[b]);
-    jacobian_blocks.push_back(jacobian[b].data());
-  }
-  std::vector<double> r(m), r_plus(m), r_minus(m);
-  ASSERT_TRUE(cost.Evaluate(parameters.data(), r.data(), jacobian_blocks.data()));
+  std::vector<double> r_plus(m), r_minus(m);
   for (size_t b = 0; b < sizes.size(); ++b) {
     for (int k = 0; k < sizes[b]; ++k) {
       const double saved = x[b][k];
@@ -43,19 +58,11 @@ inline void ExpectJacobianMatchesFiniteDifferences(const ceres::CostFunction& co
 }
 
 // The largest Jacobian entry of `cost` at x (for relative tolerances).
-inline double JacobianScale(const ceres::CostFunction& cost, std::vector<std::vector<double>> x) {
-  const int m = cost.num_residuals();
-  const auto& sizes = cost.parameter_block_sizes();
-  std::vector<const double*> parameters;
-  for (auto& block : x) parameters.push_back(block.data());
-  std::vector<std::vector<double>> jacobian(sizes.size());
-  std::vector<double*> jacobian_blocks;
-  for (size_t b = 0; b < sizes.size(); ++b) {
-    jacobian[b].resize(m * sizes[b]);
-    jacobian_blocks.push_back(jacobian[b].data());
-  }
-  std::vector<double> r(m);
-  if (!cost.Evaluate(parameters.data(), r.data(), jacobian_blocks.data())) return 0.0;
+inline double JacobianScale(const ceres::CostFunction& cost,
+                            const std::vector<std::vector<double>>& x) {
+  std::vector<double> r;
+  std::vector<std::vector<double>> jacobian;
+  if (!EvaluateWithJacobian(cost, x, &r, &jacobian)) return 0.0;
   double scale = 1e-12;
   for (const auto& block : jacobian) {
     for (double v : block) scale = std::max(scale, std::abs(v));
