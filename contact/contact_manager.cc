@@ -556,30 +556,42 @@ void ContactManager::LagFriction(const double* x, double t) {
 void ContactManager::RebuildFrictionTerms() {
   if (!friction_enabled_) return;
   potential_->RemoveTerms(kFrictionFamily);
-  num_friction_terms_ = 0;
-  for (const LaggedObstacleFriction& f : lagged_obstacle_) {
+  num_friction_contacts_ = 0;
+  // 3D: one term per contact (side 0); 2D: the exact split, one term per side.
+  const double eps_v = friction_.epsilon_v;
+  const double c = kFrictionSpeedScale * eps_v;
+  const std::vector<int> sides = dim_ == 2 ? std::vector<int>{1, -1} : std::vector<int>{0};
+  auto add = [&](std::vector<int> nodes, std::unique_ptr<ceres::CostFunction> cost, double scale,
+                 int side) {
     Term term;
     term.kind = TermKind::kDissipation;
     term.family = kFrictionFamily;
     term.impulsive = true;
-    term.nodes = {f.node};
-    term.cost = std::make_unique<ObstacleFriction>(context_, f.node, f.tangents,
-                                                   f.obstacle_velocity, friction_.epsilon_v);
-    term.loss = std::make_unique<FrictionLoss>(friction_.mu * f.normal_force);
+    term.nodes = std::move(nodes);
+    term.cost = std::move(cost);
+    if (side == 0) {
+      term.loss = std::make_unique<FrictionLoss>(scale);
+    } else {
+      term.loss = std::make_unique<OneSidedFrictionLoss>(scale, c, eps_v);
+    }
     potential_->AddTerm(std::move(term));
-    ++num_friction_terms_;
+  };
+  for (const LaggedObstacleFriction& f : lagged_obstacle_) {
+    for (int side : sides) {
+      add({f.node},
+          std::make_unique<ObstacleFriction>(context_, f.node, f.tangents, f.obstacle_velocity,
+                                             eps_v, side, c),
+          friction_.mu * f.normal_force, side);
+    }
+    ++num_friction_contacts_;
   }
   for (const LaggedEdgeFriction& f : lagged_edge_) {
-    Term term;
-    term.kind = TermKind::kDissipation;
-    term.family = kFrictionFamily;
-    term.impulsive = true;
-    term.nodes = {f.p, f.a, f.b};
-    term.cost = std::make_unique<EdgeFriction>(context_, f.p, f.a, f.b, f.tangent, f.alpha,
-                                               friction_.epsilon_v);
-    term.loss = std::make_unique<FrictionLoss>(friction_.mu * f.normal_force);
-    potential_->AddTerm(std::move(term));
-    ++num_friction_terms_;
+    for (int side : {1, -1}) {
+      add({f.p, f.a, f.b},
+          std::make_unique<EdgeFriction>(context_, f.p, f.a, f.b, f.tangent, f.alpha, side, c),
+          friction_.mu * f.normal_force, side);
+    }
+    ++num_friction_contacts_;
   }
 }
 

@@ -118,7 +118,7 @@ class ContactManager : public StepFilter {
     return static_cast<int>(obstacle_pairs_.size() + edge_pairs_.size() +
                             edge_obstacle_pairs_.size());
   }
-  int num_friction_terms() const { return num_friction_terms_; }
+  int num_friction_contacts() const { return num_friction_contacts_; }
   std::string Summary() const;
 
  private:
@@ -241,7 +241,7 @@ class ContactManager : public StepFilter {
   bool friction_enabled_ = false;
   FrictionOptions friction_;
   int lags_done_ = 0;
-  int num_friction_terms_ = 0;
+  int num_friction_contacts_ = 0;
   struct LaggedObstacleFriction {
     int node;
     Eigen::Matrix3d tangents;

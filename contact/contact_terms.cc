@@ -90,14 +90,17 @@ bool PointEdgeGap::Evaluate(double const* const* x, double* residuals, double** 
 
 ObstacleFriction::ObstacleFriction(const StepContext* context, int node,
                                    const Eigen::Matrix3d& tangents,
-                                   const Eigen::Vector3d& obstacle_velocity, double eps_v)
+                                   const Eigen::Vector3d& obstacle_velocity, double eps_v, int side,
+                                   double speed_scale)
     : context_(context),
       node_(node),
       dimension_(context->dimension),
       tangents_(tangents),
       obstacle_velocity_(obstacle_velocity),
-      eps_v_(eps_v) {
-  set_num_residuals(dimension_ - 1);
+      eps_v_(eps_v),
+      side_(side),
+      speed_scale_(speed_scale) {
+  set_num_residuals(side_ == 0 ? dimension_ - 1 : 1);
   mutable_parameter_block_sizes()->push_back(dimension_);
 }
 
@@ -112,7 +115,12 @@ bool ObstacleFriction::Evaluate(double const* const* x, double* residuals,
   }
   const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
   double dr_dv[4];
-  FrictionResidual(v_t, m, eps_v_, residuals, want_jacobian ? dr_dv : nullptr);
+  if (side_ != 0) {
+    OneSidedFrictionResidual(side_ * v_t[0], speed_scale_, residuals, dr_dv);
+    dr_dv[0] *= side_;
+  } else {
+    FrictionResidual(v_t, m, eps_v_, residuals, want_jacobian ? dr_dv : nullptr);
+  }
   if (want_jacobian) {
     // dr/dx = dr/dv_t * slope T^T.
     for (int i = 0; i < m; ++i) {
@@ -127,12 +135,14 @@ bool ObstacleFriction::Evaluate(double const* const* x, double* residuals,
 }
 
 EdgeFriction::EdgeFriction(const StepContext* context, int p, int a, int b,
-                           const Eigen::Vector2d& tangent, double alpha, double eps_v)
+                           const Eigen::Vector2d& tangent, double alpha, int side,
+                           double speed_scale)
     : context_(context),
       nodes_{p, a, b},
       tangent_(tangent),
       coefficients_{1.0, -(1.0 - alpha), -alpha},
-      eps_v_(eps_v) {
+      side_(side),
+      speed_scale_(speed_scale) {
   set_num_residuals(1);
   for (int block = 0; block < 3; ++block) mutable_parameter_block_sizes()->push_back(2);
 }
@@ -145,7 +155,8 @@ bool EdgeFriction::Evaluate(double const* const* x, double* residuals, double** 
     v_t += coefficients_[block] * (tangent_[0] * v[0] + tangent_[1] * v[1]);
   }
   double dr_dv = 0.0;
-  FrictionResidual(&v_t, 1, eps_v_, residuals, &dr_dv);
+  OneSidedFrictionResidual(side_ * v_t, speed_scale_, residuals, &dr_dv);
+  dr_dv *= side_;
   if (jacobians != nullptr) {
     for (int block = 0; block < 3; ++block) {
       if (jacobians[block] == nullptr) continue;

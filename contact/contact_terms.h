@@ -7,10 +7,13 @@
 // obstacle, so the trial point is infeasible. Beyond d_hat the residual and its
 // Jacobian are zero, so terms of pairs out of reach cost nothing.
 //
-// Friction terms (kind kDissipation, with a FrictionLoss): the residual
-// r(v_t) of contact/friction.h (dimension - 1 components) of the relative
-// tangential velocity v_t = T^T v_rel, with the velocity map of the step
-// context v(x) = v_base + slope (x - x_base).
+// Friction terms (kind kDissipation) of the relative tangential velocity
+// v_t = T^T v_rel, with the velocity map of the step context
+// v(x) = v_base + slope (x - x_base) (contact/friction.h):
+//  * 3D (side 0, with a FrictionLoss): the residual r(v_t), 2 components;
+//  * 2D (side +1 or -1, with a OneSidedFrictionLoss): one half of the exact
+//    split, the scalar residual c sigma(side v_t / c); a contact has one term
+//    per side.
 #pragma once
 
 #include <ceres/cost_function.h>
@@ -72,8 +75,10 @@ class PointEdgeGap : public ceres::CostFunction {
 // `tangents` (dimension - 1 of them) are the lagged tangent basis.
 class ObstacleFriction : public ceres::CostFunction {
  public:
+  // `side`: 0 in 3D; +1 or -1 in 2D, with `speed_scale` c.
   ObstacleFriction(const StepContext* context, int node, const Eigen::Matrix3d& tangents,
-                   const Eigen::Vector3d& obstacle_velocity, double eps_v);
+                   const Eigen::Vector3d& obstacle_velocity, double eps_v, int side = 0,
+                   double speed_scale = 0.0);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
 
  private:
@@ -83,14 +88,17 @@ class ObstacleFriction : public ceres::CostFunction {
   Eigen::Matrix3d tangents_;
   Eigen::Vector3d obstacle_velocity_;
   double eps_v_;
+  int side_;
+  double speed_scale_;
 };
 
 // 2D point p against edge [a, b]: v_t = t . (v_p - (1 - alpha) v_a - alpha v_b),
-// with the lagged unit tangent t and closest-point parameter alpha.
+// with the lagged unit tangent t and closest-point parameter alpha; the
+// one-sided residual of `side` (+1 or -1) with speed scale c.
 class EdgeFriction : public ceres::CostFunction {
  public:
   EdgeFriction(const StepContext* context, int p, int a, int b, const Eigen::Vector2d& tangent,
-               double alpha, double eps_v);
+               double alpha, int side, double speed_scale);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
 
  private:
@@ -98,7 +106,8 @@ class EdgeFriction : public ceres::CostFunction {
   int nodes_[3];
   Eigen::Vector2d tangent_;
   double coefficients_[3];
-  double eps_v_;
+  int side_;
+  double speed_scale_;
 };
 
 }  // namespace ipstep

@@ -29,6 +29,25 @@
 // twice as much while sliding (where Gauss-Newton then converged linearly).
 // In 3D the price is the across-slip curvature, 2 f0/y^2 instead of f1/y (at
 // most 2x, and exact as y -> 0).
+//
+// 2D (one tangential component v) has an exact split, used by the 2D friction
+// terms: R = mu lambda [P(v) + P(-v)] with the one-sided half
+//   P(w) = (f0(|w|) + w) / 2 + eps_v / 6   (P(-v) + P(v) = f0(|v|) + eps_v / 3),
+// convex and non-decreasing: P' = (1 + f1(|w|) sign w) / 2 in [0, 1],
+// P'' = f1'(|w|) / 2 >= 0, P = 0 for w <= -eps_v (the constant eps_v / 6 makes
+// P >= 0; it shifts R by mu lambda eps_v / 3, which no optimiser sees).
+// Each half is a term with the positive scalar residual r = c sigma(w / c),
+//   sigma(z) = e^z (z < 0),  1 + z + z^2 / 2 (z >= 0)   (C^2, increasing, > 0),
+// and the loss rho(q) = 2 mu lambda P(w(q)), w(q) = c sigma^-1(sqrt(q) / c).
+// Ceres's model curvature of a term in w is g'' r'^2 when rho'' > 0 and
+// (g' / r) r'^2 otherwise (g(r) = P(w(r))); the exact one is
+// g'' r'^2 + g' r'' = P'', so the model is off by at most P' |r''| / r'^2
+// <= mu lambda / c (sigma'' / sigma'^2 <= 1): the pair of halves reproduces
+// IPC's Hessian mu lambda f1'(|v|) (2 mu lambda / eps_v at rest, 0 while
+// sliding) up to mu lambda / c. c = kFrictionSpeedScale eps_v: the residual
+// and loss stay exact at every speed (sigma is invertible on all of R; the
+// quadratic branch keeps r finite), and the reconstructed w is accurate to
+// about eps c.
 #pragma once
 
 #include <ceres/loss_function.h>
@@ -50,6 +69,28 @@ class FrictionLoss : public ceres::LossFunction {
 
  private:
   double scale_;
+};
+
+// c / eps_v of the 2D split (the model curvature error is mu lambda / c).
+constexpr double kFrictionSpeedScale = 1e3;
+
+// The one-sided half P(w) per unit mu lambda; P'(w), P''(w) when not null.
+double FrictionHalf(double w, double eps_v, double* d1 = nullptr, double* d2 = nullptr);
+
+// r = c sigma(w / c) and dr/dw.
+void OneSidedFrictionResidual(double w, double c, double* r, double* dr_dw);
+
+// rho(q) = 2 scale P(w(q)) for the residual above (scale = mu lambda).
+class OneSidedFrictionLoss : public ceres::LossFunction {
+ public:
+  OneSidedFrictionLoss(double scale, double c, double eps_v)
+      : scale_(scale), c_(c), eps_v_(eps_v) {}
+  void Evaluate(double q, double rho[3]) const override;
+
+ private:
+  double scale_;
+  double c_;
+  double eps_v_;
 };
 
 }  // namespace ipstep

@@ -58,6 +58,9 @@ WeightedLoss::WeightedLoss(const ceres::LossFunction* inner, const double* weigh
 void WeightedLoss::Evaluate(double s, double rho[3]) const {
   inner_->Evaluate(s, rho);
   for (int k = 0; k < 3; ++k) rho[k] *= *weight_;
+  // Ceres's corrector aborts (CHECK) when rho'' > 0 and rho' <= 0, e.g. when
+  // a tiny rho' underflows with the weight: drop the curvature correction.
+  if (!(rho[1] > 0.0) && !(rho[2] <= 0.0)) rho[2] = 0.0;
 }
 
 }  // namespace ipstep

@@ -63,7 +63,8 @@ class WeightedCostFunction : public ceres::CostFunction {
   const bool* veto_;
 };
 
-// Decorator for terms with a loss: rho_w(s) = weight * rho(s).
+// Decorator for terms with a loss: rho_w(s) = weight * rho(s) (and rho_w'' = 0
+// where rho_w' <= 0, which Ceres's corrector would abort on).
 class WeightedLoss : public ceres::LossFunction {
  public:
   WeightedLoss(const ceres::LossFunction* inner, const double* weight);

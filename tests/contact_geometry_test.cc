@@ -151,6 +151,50 @@ TEST(Friction, ResidualMatchesDissipationAndFiniteDifferences) {
   EXPECT_NEAR(jac * jac * v, 0.5, 0.01);
 }
 
+// The exact 2D split R = mu lambda (P(v) + P(-v)): the halves add up to
+// f0(|v|) + eps_v / 3; P', P'' and the loss's rho', rho'' against central
+// differences; and Ceres's model curvature of the pair (rho' + 2 q rho'' along
+// the residual where rho'' > 0, rho' otherwise, times (dr/dv)^2) matches IPC's
+// f1'(|v|) up to 1 / c: 2 / eps_v at rest, 0 while sliding (the single
+// residual psi(|v|) v / |v| gave f1^2 / (2 f0) there).
+TEST(Friction, OneSidedSplitHasIpcCurvature) {
+  const double eps = 1e-3, c = kFrictionSpeedScale * eps, scale = 2.5;
+  const OneSidedFrictionLoss loss(scale, c, eps);
+  for (double v : {0.0, 1e-6, -3e-4, 5e-4, -9.9e-4, 1.01e-3, 2e-3, -0.05, 0.3, 4.0, -30.0}) {
+    double p1, p2;
+    const double p = FrictionHalf(v, eps, &p1, &p2), q = FrictionHalf(-v, eps);
+    EXPECT_NEAR(p + q, FrictionF0(std::abs(v), eps) + eps / 3.0, 1e-15 * (1.0 + std::abs(v))) << v;
+    EXPECT_GE(p, 0.0);
+    const double h = 1e-9;
+    EXPECT_NEAR(p1, (FrictionHalf(v + h, eps) - FrictionHalf(v - h, eps)) / (2 * h), 1e-6) << v;
+    double d1p, d1m;
+    FrictionHalf(v + h, eps, &d1p);
+    FrictionHalf(v - h, eps, &d1m);
+    EXPECT_NEAR(p2, (d1p - d1m) / (2 * h), 1e-5 / eps) << v;
+
+    double model = 0.0;
+    for (int side : {1, -1}) {
+      double r, dr_dw;
+      OneSidedFrictionResidual(side * v, c, &r, &dr_dw);
+      const double qs = r * r;
+      double rho[3];
+      loss.Evaluate(qs, rho);
+      EXPECT_NEAR(0.5 * rho[0], scale * FrictionHalf(side * v, eps), 1e-12 * scale) << v;
+      const double hq = 1e-9 * qs;
+      double rp[3], rm[3];
+      loss.Evaluate(qs + hq, rp);
+      loss.Evaluate(qs - hq, rm);
+      EXPECT_NEAR(rho[1], (rp[0] - rm[0]) / (2 * hq), 1e-5 * (std::abs(rho[1]) + 1e-3)) << v;
+      EXPECT_NEAR(rho[2], (rp[1] - rm[1]) / (2 * hq), 1e-4 * (std::abs(rho[2]) + 1e-3)) << v;
+      const double along = rho[2] > 0.0 ? rho[1] + 2.0 * qs * rho[2] : rho[1];
+      model += along * dr_dw * dr_dw;
+    }
+    const double y = std::abs(v);
+    const double exact = scale * (y < eps ? 2.0 / eps - 2.0 * y / (eps * eps) : 0.0);
+    EXPECT_NEAR(model, exact, scale / c * 1.000001) << v;
+  }
+}
+
 Obstacle Plane2D() {
   Obstacle o;
   o.type = ObstacleType::kPlane;
@@ -456,8 +500,15 @@ TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
   tangents.col(0) = Eigen::Vector3d(0.6, 0.8, 0);
   ObstacleFriction friction(&context, 1, tangents, Eigen::Vector3d(0.5, 0, 0), 1e-3);
   CheckJacobian(friction, {{0.31, 0.42}});
-  EdgeFriction edge_friction(&context, 0, 1, 2, Eigen::Vector2d(1, 0), 0.3, 1e-3);
-  CheckJacobian(edge_friction, {{0.11, 0.2}, {0.3, 0.41}, {0.52, 0.6}});
+  for (int side : {1, -1}) {
+    // Speed scales below and above the tangential speed (both residual branches).
+    for (double c : {0.05, 20.0}) {
+      EdgeFriction edge_friction(&context, 0, 1, 2, Eigen::Vector2d(1, 0), 0.3, side, c);
+      CheckJacobian(edge_friction, {{0.11, 0.2}, {0.3, 0.41}, {0.52, 0.6}});
+      ObstacleFriction one_sided(&context, 1, tangents, Eigen::Vector3d(0.5, 0, 0), 1e-3, side, c);
+      CheckJacobian(one_sided, {{0.31, 0.42}});
+    }
+  }
   // Sticking (|v_t| < eps_v): node 1 at x_base - v_base / slope + a small slip.
   ObstacleFriction sticking(&context, 1, tangents, Eigen::Vector3d(0, 0, 0), 1.0);
   CheckJacobian(sticking, {{0.3 - 3.0 / 50 + 0.002, 0.4 - 4.0 / 50 + 0.001}});
