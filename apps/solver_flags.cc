@@ -27,6 +27,10 @@ DEFINE_string(sparse_library, "",
               "newton/dogleg: SUITE_SPARSE | CX_SPARSE | EIGEN_SPARSE (default CX_SPARSE)");
 DEFINE_double(trust_region_radius, 0.0,
               "newton/dogleg: initial trust-region radius; 0: newton 1e16, dogleg 1e4");
+DEFINE_bool(backtrack_rejected_steps, true,
+            "newton/dogleg: when Ceres rejects a trial step (refused by contact, or the energy "
+            "rose), backtrack along it and restart Ceres from there (false: Ceres only shrinks "
+            "its trust region)");
 DEFINE_string(line_search, "", "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
 DEFINE_string(nonlinear_cg, "",
               "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIEFEL (default FLETCHER_REEVES)");
@@ -75,13 +79,14 @@ SimulationOptions SimulationOptionsFromFlags() {
   p.linear_solver = FLAGS_linear_solver;
   p.sparse_library = FLAGS_sparse_library;
   p.initial_trust_region_radius = FLAGS_trust_region_radius;
+  p.backtrack_rejected_steps = FLAGS_backtrack_rejected_steps;
   p.line_search = FLAGS_line_search;
   p.nonlinear_cg = FLAGS_nonlinear_cg;
   p.lbfgs_rank = FLAGS_lbfgs_rank;
   p.mass_scaled_coordinates = FLAGS_mass_scaled_coordinates;
   p.precise_line_search_energy = FLAGS_precise_energy;
-  for (const char* flag :
-       {"linear_solver", "sparse_library", "trust_region_radius", "num_threads"}) {
+  for (const char* flag : {"linear_solver", "sparse_library", "trust_region_radius", "num_threads",
+                           "backtrack_rejected_steps"}) {
     RequireOptimizerKind(flag, true, p.optimizer);
   }
   for (const char* flag :

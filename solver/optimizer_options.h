@@ -46,6 +46,11 @@ struct OptimizerOptions {
   std::string linear_solver;   // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR
   std::string sparse_library;  // SUITE_SPARSE, CX_SPARSE, EIGEN_SPARSE
   double initial_trust_region_radius = 0.0;
+  // newton, dogleg: when Ceres rejects a trial step (a step filter refused it,
+  // or the energy rose), backtrack along it as a line search would and
+  // restart Ceres from there with a fresh trust region
+  // (solver/trust_region_solver.h). false: Ceres only shrinks its radius.
+  bool backtrack_rejected_steps = true;
   std::string line_search;   // WOLFE or ARMIJO
   std::string nonlinear_cg;  // FLETCHER_REEVES, POLAK_RIBIERE, HESTENES_STIEFEL
   int lbfgs_rank = 0;

@@ -13,7 +13,7 @@ ceres::CallbackReturnType StoppingCallback::operator()(const ceres::IterationSum
           << " residual=" << last_measure_ << (summary.step_is_successful ? "" : " (rejected)");
   if (sink_ != nullptr && *sink_) {
     IterationRecord r;
-    r.iteration = summary.iteration;
+    r.iteration = iteration_offset_ + summary.iteration;
     r.energy = summary.cost * energy_scale_;
     r.gradient_norm = summary.gradient_max_norm;
     r.step_size = step;

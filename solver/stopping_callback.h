@@ -23,7 +23,12 @@ class StoppingCallback : public ceres::IterationCallback {
         energy_scale_(energy_scale) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override;
-  void Reset() { last_measure_ = -1.0; }
+  // `iteration_offset` is added to reported iteration numbers (a solver that
+  // restarts Ceres continues its count).
+  void Reset(int iteration_offset = 0) {
+    last_measure_ = -1.0;
+    iteration_offset_ = iteration_offset;
+  }
 
  private:
   double tolerance_;
@@ -31,6 +36,7 @@ class StoppingCallback : public ceres::IterationCallback {
   const IterationSink* sink_;
   double energy_scale_;
   double last_measure_ = -1.0;
+  int iteration_offset_ = 0;
 };
 
 }  // namespace ipstep

@@ -1,5 +1,6 @@
 #include "solver/trust_region_solver.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "core/stopping_rule.h"
@@ -23,6 +24,9 @@ TrustRegionSolver::TrustRegionSolver(IncrementalPotential* potential, const Stat
       },
       &sink_);
   ceres_options_.callbacks.push_back(callback_.get());
+  if (options.backtrack_rejected_steps) {
+    ceres_options_.callbacks.push_back(&backtrack_callback_);
+  }
   BuildProblem();
 }
 
@@ -31,7 +35,9 @@ void TrustRegionSolver::BuildProblem() {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  if (potential_->has_step_filters()) problem_options.evaluation_callback = &filter_callback_;
+  if (potential_->has_step_filters() || options_.backtrack_rejected_steps) {
+    problem_options.evaluation_callback = &filter_callback_;
+  }
   problem_ = std::make_unique<ceres::Problem>(problem_options);
   weighted_costs_.clear();
   weighted_losses_.clear();
@@ -65,9 +71,58 @@ void TrustRegionSolver::BuildProblem() {
 }
 
 void TrustRegionSolver::FilterCallback::PrepareForEvaluation(bool, bool new_evaluation_point) {
-  if (new_evaluation_point) {
-    solver_->veto_ = !solver_->potential_->IsStepValid(solver_->positions_.data());
+  if (!new_evaluation_point) return;
+  // The user memory holds the trial point.
+  TrustRegionSolver& s = *solver_;
+  s.veto_ = s.potential_->has_step_filters() && !s.potential_->IsStepValid(s.positions_.data());
+  if (s.options_.backtrack_rejected_steps) {
+    s.rejected_ = s.positions_;
+    s.rejected_vetoed_ = s.veto_;
   }
+}
+
+ceres::CallbackReturnType TrustRegionSolver::BacktrackCallback::operator()(
+    const ceres::IterationSummary& summary) {
+  if (summary.step_is_successful || summary.iteration == 0) return ceres::SOLVER_CONTINUE;
+  return solver_->BacktrackRejectedStep() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+}
+
+bool TrustRegionSolver::BacktrackRejectedStep() {
+  // The callback runs with update_state_every_iteration: positions_ is the
+  // accepted iterate, which is also the filters' last accepted point.
+  constexpr double kFilterFraction = 0.9, kArmijo = 1e-4;
+  constexpr int kMaxHalvings = 30;
+  const Eigen::VectorXd& x = positions_;
+  if (rejected_.size() != x.size()) return false;
+  const Eigen::VectorXd direction = rejected_ - x;
+  double energy = 0.0;
+  ++backtrack_evaluations_;
+  if (!potential_->Evaluate(x.data(), &energy, gradient_.data())) return false;
+  const double slope = gradient_.dot(direction);
+  long double e0 = 0.0L;
+  if (!(slope < 0.0) || !potential_->EvaluatePreciseEnergy(x.data(), &e0)) return false;
+  double alpha = 0.5;
+  if (rejected_vetoed_) {
+    alpha = kFilterFraction * potential_->MaxStepSize(x.data(), rejected_.data());
+  } else {
+    long double e1 = 0.0L;
+    ++backtrack_evaluations_;
+    if (potential_->EvaluatePreciseEnergy(rejected_.data(), &e1)) {
+      const double curvature = static_cast<double>(e1 - e0) - slope;  // of the quadratic
+      if (curvature > 0.0) alpha = std::clamp(-slope / (2.0 * curvature), 0.1, 0.5);
+    }
+  }
+  for (int k = 0; k < kMaxHalvings && alpha > 0.0; ++k, alpha *= 0.5) {
+    trial_ = x + alpha * direction;
+    long double e = 0.0L;
+    ++backtrack_evaluations_;
+    if (potential_->EvaluatePreciseEnergy(trial_.data(), &e) &&
+        e <= e0 + static_cast<long double>(kArmijo * alpha * slope)) {
+      restart_point_ = trial_;
+      return true;
+    }
+  }
+  return false;
 }
 
 double TrustRegionSolver::MeasureAt(const double* x) {
@@ -92,11 +147,34 @@ StepSolveResult TrustRegionSolver::Solve(Eigen::VectorXd* x) {
     return result;
   }
   ceres::Solver::Summary summary;
-  ceres::Solve(ceres_options_, problem_.get(), &summary);
+  ceres::Solver::Options options = ceres_options_;
+  int iterations = 0, evaluations = 0;
+  backtrack_evaluations_ = 0;
+  while (true) {
+    restart_point_.resize(0);
+    ceres::Solve(options, problem_.get(), &summary);
+    iterations += summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
+    evaluations += summary.num_residual_evaluations;
+    const bool backtracked =
+        summary.termination_type == ceres::USER_FAILURE && restart_point_.size() > 0;
+    if (!backtracked) break;
+    // Restart from the backtracked point with a fresh trust region and what is left
+    // of the iteration and time budgets.
+    positions_ = restart_point_;
+    potential_->NotifyAccepted(positions_.data());
+    callback_->Reset(iterations);
+    options.max_num_iterations = ceres_options_.max_num_iterations - iterations;
+    options.max_solver_time_in_seconds -= summary.total_time_in_seconds;
+    if (options.max_num_iterations <= 0 || options.max_solver_time_in_seconds <= 0.0) {
+      summary.termination_type = ceres::NO_CONVERGENCE;
+      summary.message = options.max_num_iterations <= 0 ? "Maximum number of iterations reached."
+                                                        : "Maximum solver time reached.";
+      break;
+    }
+  }
   *x = positions_;
-  result.iterations =
-      summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
-  result.evaluations = summary.num_residual_evaluations;
+  result.iterations = iterations;
+  result.evaluations = evaluations + backtrack_evaluations_;
   result.ceres_report = summary.BriefReport();
   result.residual = MeasureAt(positions_.data());
   ClassifySolve(summary.termination_type, summary.message, result.iterations,

@@ -4,12 +4,35 @@
 // The Problem is rebuilt only when the potential's terms change (e.g. contact).
 // Step filters see every trial point through a ceres::EvaluationCallback and
 // veto infeasible ones by failing the evaluation.
+//
+// Backtracking rejected steps (OptimizerOptions::backtrack_rejected_steps):
+// Ceres cannot shorten a step, only shrink its trust region, and from the
+// initial radius 1e16 (chosen so Levenberg-Marquardt takes exact Gauss-Newton
+// steps) it shrinks it by 2, 4, 8, ... on consecutive rejections: about ten
+// rejections before the radius bites. Two cases made that common:
+//  * a Gauss-Newton step that ignores a contact not yet within d_hat passes
+//    through the obstacle and a step filter refuses it;
+//  * friction's stick-slip curvature changes over eps_v, so a Newton step
+//    across the transition raises the energy.
+// Measured on `slope` (tolerance 1e-6): first-contact steps took 41-45
+// iterations against 7 for the projected Newton reference. So when Ceres
+// rejects a trial point, an iteration callback backtracks along the rejected
+// step as a projected Newton line search would: from 0.9 of the filters'
+// largest feasible fraction (MaxStepSize, continuous collision detection) for
+// a refused point, from the minimiser of the quadratic through E(0), E'(0)
+// and E(1) (clamped to [0.1, 0.5]) for a point that raised the energy; halved
+// until the Armijo rule (1e-4) holds, energies in extended precision. If a
+// point is found, the callback ends the Ceres solve and the solver restarts
+// Ceres from it with a fresh trust region (iterations and evaluations add up
+// over restarts; the rejected iteration is the one that moved). Otherwise
+// Ceres goes on shrinking its radius.
 #pragma once
 
 #include <memory>
 #include <vector>
 
 #include <ceres/evaluation_callback.h>
+#include <ceres/iteration_callback.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
@@ -36,8 +59,21 @@ class TrustRegionSolver : public StepSolver {
     TrustRegionSolver* solver_;
   };
 
+  // Ends the Ceres solve after a rejected step that could be backtracked.
+  class BacktrackCallback : public ceres::IterationCallback {
+   public:
+    explicit BacktrackCallback(TrustRegionSolver* solver) : solver_(solver) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override;
+
+   private:
+    TrustRegionSolver* solver_;
+  };
+
   void BuildProblem();
   double MeasureAt(const double* x);
+  // positions_ holds the accepted iterate and rejected_ the rejected trial
+  // point: finds the restart point (into restart_point_); false if none.
+  bool BacktrackRejectedStep();
 
   IncrementalPotential* potential_;
   const State* state_;
@@ -49,8 +85,14 @@ class TrustRegionSolver : public StepSolver {
   std::vector<std::unique_ptr<ceres::LossFunction>> weighted_losses_;
   std::unique_ptr<ceres::Problem> problem_;
   int built_version_ = -1;
-  bool veto_ = false;  // the current trial point was rejected by a step filter
+  bool veto_ = false;              // the current trial point was rejected by a step filter
+  bool rejected_vetoed_ = false;   // rejected_ was refused by a step filter
+  Eigen::VectorXd rejected_;       // the last trial point
+  Eigen::VectorXd restart_point_;  // where Ceres restarts after backtracking
+  Eigen::VectorXd trial_;
+  int backtrack_evaluations_ = 0;
   FilterCallback filter_callback_{this};
+  BacktrackCallback backtrack_callback_{this};
   std::unique_ptr<StoppingCallback> callback_;
 };
 

@@ -60,6 +60,8 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--optimizer=newton --line_search=ARMIJO", "flag", "--line_search");
   ExpectInputError("--optimizer=lbfgs --linear_solver=DENSE_QR", "flag", "--linear_solver");
   ExpectInputError("--optimizer=lbfgs --line_search=ARMIJO", "flag", "--line_search");
+  ExpectInputError("--optimizer=lbfgs --backtrack_rejected_steps=false", "flag",
+                   "--backtrack_rejected_steps");
   ExpectInputError("--max_iterations=-1", "flag", "--max_iterations");
   ExpectInputError("--frame_every=0", "flag", "--frame_every");
   ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
