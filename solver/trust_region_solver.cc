@@ -78,12 +78,19 @@ void TrustRegionSolver::FilterCallback::PrepareForEvaluation(bool, bool new_eval
   if (s.options_.backtrack_rejected_steps) {
     s.rejected_ = s.positions_;
     s.rejected_vetoed_ = s.veto_;
+    s.trial_since_callback_ = true;
   }
 }
 
 ceres::CallbackReturnType TrustRegionSolver::BacktrackCallback::operator()(
     const ceres::IterationSummary& summary) {
-  if (summary.step_is_successful || summary.iteration == 0) return ceres::SOLVER_CONTINUE;
+  // Without a new trial point (e.g. the linear solver failed) there is
+  // nothing to backtrack along.
+  const bool trial = solver_->trial_since_callback_;
+  solver_->trial_since_callback_ = false;
+  if (summary.step_is_successful || summary.iteration == 0 || !trial) {
+    return ceres::SOLVER_CONTINUE;
+  }
   return solver_->BacktrackRejectedStep() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
 }
 
@@ -93,7 +100,11 @@ bool TrustRegionSolver::BacktrackRejectedStep() {
   constexpr double kFilterFraction = 0.9, kArmijo = 1e-4;
   constexpr int kMaxHalvings = 30;
   const Eigen::VectorXd& x = positions_;
-  if (rejected_.size() != x.size()) return false;
+  // Without inertia (quasi-static) the Gauss-Newton model can be nearly
+  // singular (a body free to slide, gravity's tiny curvature): its steps are
+  // then poor directions, and the trust region's memory of a small radius is
+  // the better globalisation.
+  if (!(potential_->context().inertia_weight > 0.0)) return false;
   const Eigen::VectorXd direction = rejected_ - x;
   double energy = 0.0;
   ++backtrack_evaluations_;
@@ -152,6 +163,7 @@ StepSolveResult TrustRegionSolver::Solve(Eigen::VectorXd* x) {
   backtrack_evaluations_ = 0;
   while (true) {
     restart_point_.resize(0);
+    trial_since_callback_ = false;
     ceres::Solve(options, problem_.get(), &summary);
     iterations += summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
     evaluations += summary.num_residual_evaluations;

@@ -25,7 +25,12 @@
 // point is found, the callback ends the Ceres solve and the solver restarts
 // Ceres from it with a fresh trust region (iterations and evaluations add up
 // over restarts; the rejected iteration is the one that moved). Otherwise
-// Ceres goes on shrinking its radius.
+// Ceres goes on shrinking its radius. Not for quasi-static steps (no inertia):
+// their Gauss-Newton model can be nearly singular (a falling cloth draped over
+// a sphere: steps of kilometres, each refused, each cut to a tiny advance;
+// cloth_sphere's first quasi-static step failed after 330 iterations instead
+// of converging in 79), and there the trust region's memory of a small radius
+// is the better globalisation.
 #pragma once
 
 #include <memory>
@@ -85,8 +90,9 @@ class TrustRegionSolver : public StepSolver {
   std::vector<std::unique_ptr<ceres::LossFunction>> weighted_losses_;
   std::unique_ptr<ceres::Problem> problem_;
   int built_version_ = -1;
-  bool veto_ = false;              // the current trial point was rejected by a step filter
-  bool rejected_vetoed_ = false;   // rejected_ was refused by a step filter
+  bool veto_ = false;             // the current trial point was rejected by a step filter
+  bool rejected_vetoed_ = false;  // rejected_ was refused by a step filter
+  bool trial_since_callback_ = false;
   Eigen::VectorXd rejected_;       // the last trial point
   Eigen::VectorXd restart_point_;  // where Ceres restarts after backtracking
   Eigen::VectorXd trial_;
