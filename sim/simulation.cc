@@ -135,10 +135,6 @@ void Simulation::SolveStep(Eigen::VectorXd* x, StepReport* report) {
       refreshed |= filter->RefreshTerms(x->data());
     if (!refreshed) break;
   }
-  if (potential_->has_step_filters() && !potential_->IsFeasible(x->data())) {
-    report->converged = false;
-    report->status = "infeasible state after the step (penetration)";
-  }
 }
 
 bool Simulation::ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const {
@@ -217,8 +213,10 @@ StepReport Simulation::Step() {
     }
   }
   ApplyBoundaryConditions(t_next, &state_.x);
-  // Explicit steps have no step filter protecting them: check the state.
-  if (!integrator_->is_variational() && report.converged && potential_->has_step_filters()) {
+  // One check of the new state for every integrator: explicit steps have no
+  // step filter protecting them, and a variational step must also have
+  // finished its filters' work (e.g. a moving obstacle's staged time).
+  if (potential_->has_step_filters()) {
     potential_->NotifyAccepted(state_.x.data());
     if (!potential_->IsFeasible(state_.x.data())) {
       report.converged = false;
