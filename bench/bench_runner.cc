@@ -100,6 +100,14 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
       spec.ceres.sparse_library = value;
     } else if (key == "radius") {
       spec.ceres.initial_trust_region_radius = ParseNumber(text, key, value);
+    } else if (key == "backtrack") {
+      if (value != "true" && value != "false") {
+        throw InputError("optimizer spec", text, "backtrack must be true or false");
+      }
+      if (!IsTrustRegion(spec.ceres.optimizer)) {
+        throw InputError("optimizer spec", text, "backtrack applies to newton and dogleg only");
+      }
+      spec.ceres.backtrack_rejected_steps = value == "true";
     } else if (key == "linear_solver") {
       spec.ceres.linear_solver = value;
     } else if (key == "threads") {
@@ -113,8 +121,8 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
     } else {
       throw InputError("optimizer spec", text,
                        "unknown key '" + key +
-                           "' (sparse, radius, linear_solver, threads, max_iterations, "
-                           "line_search, rank, type)");
+                           "' (sparse, radius, backtrack, linear_solver, threads, "
+                           "max_iterations, line_search, rank, type)");
     }
   }
   // Validates the Ceres options now (a bad spec is an input error, not a run failure).

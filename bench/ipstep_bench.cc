@@ -39,7 +39,8 @@ DEFINE_string(integrators, "backward_euler,newmark",
 DEFINE_string(optimizers, "newton,lbfgs,projected_newton",
               "Comma-separated optimiser specs: a Ceres optimiser (newton, dogleg, lbfgs, bfgs, "
               "ncg, gradient_descent) with options as +key=value (e.g. "
-              "newton+sparse=SUITE_SPARSE+radius=1e8, lbfgs+rank=5), or projected_newton (the "
+              "newton+sparse=SUITE_SPARSE+radius=1e8, newton+backtrack=false, lbfgs+rank=5), or "
+              "projected_newton (the "
               "Eigen reference, not Ceres). symplectic_euler always runs once with 'none'");
 DEFINE_string(dts, "",
               "Comma-separated time steps [s]; empty: the scene's time_step x --dt_factors");
