@@ -94,11 +94,28 @@ ceres::CallbackReturnType TrustRegionSolver::BacktrackCallback::operator()(
   return solver_->BacktrackRejectedStep() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
 }
 
+namespace {
+
+// Armijo's rule, and a strict decrease: a step below the positions' round-off
+// leaves E unchanged and would satisfy Armijo's rule with a vanishing slope.
+bool SufficientDecrease(long double e0, long double e, double alpha, double slope) {
+  constexpr double kArmijo = 1e-4;
+  return e < e0 && e <= e0 + static_cast<long double>(kArmijo * alpha * slope);
+}
+
+}  // namespace
+
 bool TrustRegionSolver::BacktrackRejectedStep() {
   // The callback runs with update_state_every_iteration: positions_ is the
   // accepted iterate, which is also the filters' last accepted point.
-  constexpr double kFilterFraction = 0.9, kArmijo = 1e-4;
-  constexpr int kMaxHalvings = 30;
+  constexpr double kFilterFraction = 0.9;
+  // A refused step is cut to the contact-safe fraction, which may be small
+  // for a long Gauss-Newton step; a step that raised the energy is searched
+  // down to about 1e-4 only: below that its model is no better than the
+  // gradient's, and near the precision floor the search would only find
+  // round-off "decreases" (measured: a 100x100 cloth step restarted Ceres at
+  // the same point until the iteration limit).
+  const int max_halvings = rejected_vetoed_ ? 30 : 10;
   const Eigen::VectorXd& x = positions_;
   // Without inertia (quasi-static) the Gauss-Newton model can be nearly
   // singular (a body free to slide, gravity's tiny curvature): its steps are
@@ -119,16 +136,23 @@ bool TrustRegionSolver::BacktrackRejectedStep() {
     long double e1 = 0.0L;
     ++backtrack_evaluations_;
     if (potential_->EvaluatePreciseEnergy(rejected_.data(), &e1)) {
+      // Ceres compares costs in double precision: near convergence it rejects
+      // steps whose decrease is below the round-off of its cost sum (the
+      // precision floor). The extended-precision energy can still see it.
+      if (SufficientDecrease(e0, e1, 1.0, slope)) {
+        restart_point_ = rejected_;
+        return true;
+      }
       const double curvature = static_cast<double>(e1 - e0) - slope;  // of the quadratic
       if (curvature > 0.0) alpha = std::clamp(-slope / (2.0 * curvature), 0.1, 0.5);
     }
   }
-  for (int k = 0; k < kMaxHalvings && alpha > 0.0; ++k, alpha *= 0.5) {
+  for (int k = 0; k < max_halvings && alpha > 0.0; ++k, alpha *= 0.5) {
     trial_ = x + alpha * direction;
     long double e = 0.0L;
     ++backtrack_evaluations_;
     if (potential_->EvaluatePreciseEnergy(trial_.data(), &e) &&
-        e <= e0 + static_cast<long double>(kArmijo * alpha * slope)) {
+        SufficientDecrease(e0, e, alpha, slope)) {
       restart_point_ = trial_;
       return true;
     }
@@ -167,8 +191,16 @@ StepSolveResult TrustRegionSolver::Solve(Eigen::VectorXd* x) {
     ceres::Solve(options, problem_.get(), &summary);
     iterations += summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
     evaluations += summary.num_residual_evaluations;
-    const bool backtracked =
-        summary.termination_type == ceres::USER_FAILURE && restart_point_.size() > 0;
+    bool backtracked = summary.termination_type == ceres::USER_FAILURE && restart_point_.size() > 0;
+    // Ceres also ends a solve when a trial point's cost equals the current one
+    // in double precision ("function tolerance", at the precision floor),
+    // before any callback sees the rejection: backtrack along that trial too.
+    if (!backtracked && summary.termination_type == ceres::CONVERGENCE &&
+        options_.backtrack_rejected_steps && trial_since_callback_ &&
+        !(MeasureAt(positions_.data()) <= options_.tolerance)) {
+      backtracked = BacktrackRejectedStep();
+      iterations += backtracked;  // the trial's iteration, not in Ceres's summary
+    }
     if (!backtracked) break;
     // Restart from the backtracked point with a fresh trust region and what is left
     // of the iteration and time budgets.
