@@ -681,6 +681,27 @@ std::string BoxConflict(const ContactSurface& surface, const double* x, const Ob
   return "";
 }
 
+// Initial states that only the 3D face and box-edge checks see (every node and
+// every spring outside the obstacle): a small sphere inside a face, a thin box
+// column through a face, a thin box wall through springs.
+TEST(ContactInput, FaceOrSpringThroughA3DObstacleIsAnInputError) {
+  const double inradius = 0.1 * (std::sqrt(2.0) - 1.0) / 2.0;
+  const json origin = {-0.25, 0.0, 0.3 - inradius};  // as in SmallSphereDoesNotPassThroughACell
+  ExpectInputError(
+      ClothScene(6, 0.5, origin, {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 0.015}}}),
+      "contact", "is inside or touching contact.obstacles[0]");
+  // Reported as a face (no node or spring is in reach).
+  ExpectInputError(
+      ClothScene(6, 0.5, origin, {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 0.015}}}),
+      "contact", "face (");
+  const json column = {{"type", "box"}, {"min", {-0.01, -1, -0.01}}, {"max", {0.01, 0.1, 0.01}}};
+  ExpectInputError(ClothScene(6, 0.5, origin, json::array({column})), "contact",
+                   "an edge of contact.obstacles[0] passes through face (");
+  const json wall = {{"type", "box"}, {"min", {-0.02, -0.01, -1}}, {"max", {0.02, 0.01, 1}}};
+  ExpectInputError(ClothScene(6, 0.5, origin, json::array({wall})), "contact",
+                   "passes through contact.obstacles[0]");
+}
+
 // A cloth of 8 x 8 nodes (0.6 m) falls onto a 0.3 m box and drapes over its
 // four top edges and corners (the box's top corner (0.15, 0, 0.15) lies inside
 // a quad, every top edge crosses a row of springs). Before the box-edge and
