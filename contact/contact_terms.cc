@@ -101,30 +101,29 @@ bool FaceObstacleGap::Evaluate(double const* const* x, double* residuals,
   Eigen::Vector3d grad[3];
   double d = obstacle_->FaceDistance(feature_, a, b, c, *time_, grad);
   if (!(d > min_distance_)) return false;
-  if (weights_ != nullptr)
+  if (weights_ != nullptr) {
     d = obstacle_->FacePointDistance(feature_, a, b, c, *weights_, *time_, grad);
+  }
   WriteGapResidual(d, d_hat_, grad, 3, residuals, jacobians);
   return true;
 }
 
 EdgeBoxEdgeGap::EdgeBoxEdgeGap(const Obstacle* obstacle, int box_edge, const double* time,
-                               double d_hat, double min_distance, const double* s)
+                               double d_hat, double min_distance)
     : obstacle_(obstacle),
       box_edge_(box_edge),
       time_(time),
       d_hat_(d_hat),
-      min_distance_(min_distance),
-      s_(s) {
+      min_distance_(min_distance) {
   set_num_residuals(1);
   for (int b = 0; b < 2; ++b) mutable_parameter_block_sizes()->push_back(3);
 }
 
 bool EdgeBoxEdgeGap::Evaluate(double const* const* x, double* residuals, double** jacobians) const {
   const Eigen::Vector3d a = ToPoint(x[0], 3), b = ToPoint(x[1], 3);
-  if (!(obstacle_->BoxEdgeDistance(box_edge_, a, b, *time_) > min_distance_)) return false;
   Eigen::Vector3d grad[2];
-  const double d =
-      obstacle_->BoxEdgePointDistance(box_edge_, a, b, *s_, *time_, &grad[0], &grad[1]);
+  const double d = obstacle_->BoxEdgeDistance(box_edge_, a, b, *time_, &grad[0], &grad[1]);
+  if (!(d > min_distance_)) return false;
   WriteGapResidual(d, d_hat_, grad, 2, residuals, jacobians);
   return true;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -53,6 +54,17 @@ bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs, std::v
   return any;
 }
 
+// The same without lags.
+template <class Pair>
+bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs) {
+  std::vector<Pair> merged;
+  std::set_union(pairs->begin(), pairs->end(), added.begin(), added.end(),
+                 std::back_inserter(merged));
+  const bool any = merged.size() != pairs->size();
+  *pairs = std::move(merged);
+  return any;
+}
+
 }  // namespace
 
 MeshObstaclePairs::MeshObstaclePairs(const ContactSurface* surface,
@@ -80,7 +92,6 @@ void MeshObstaclePairs::Clear() {
   face_pairs_.clear();
   face_lag_.clear();
   box_edge_pairs_.clear();
-  edge_lag_.clear();
 }
 
 bool MeshObstaclePairs::FaceIsFree(int face) const {
@@ -193,11 +204,7 @@ bool MeshObstaclePairs::Extend(const double* x, double t, const std::vector<doub
     Distance(x, t, p, nullptr, &w);
     return w;
   });
-  const bool new_edges = MergePairs(edges, &box_edge_pairs_, &edge_lag_, [&](const BoxEdgePair& p) {
-    double s = 0.0;
-    Distance(x, t, p, nullptr, &s);
-    return s;
-  });
+  const bool new_edges = MergePairs(edges, &box_edge_pairs_);
   return new_faces || new_edges;
 }
 
@@ -225,6 +232,7 @@ double MeshObstaclePairs::Lag(const double* x, double t) {
   double excess = 0.0;
   for (size_t k = 0; k < face_pairs_.size(); ++k) {
     const FacePair& p = face_pairs_[k];
+    if (!((*obstacles_)[p.obstacle].FeatureRadius() > 0.0)) continue;  // true distance
     const auto& f = surface_->faces[p.face];
     Eigen::Vector3d w;
     const double d = Distance(x, t, p, nullptr, &w);
@@ -235,24 +243,7 @@ double MeshObstaclePairs::Lag(const double* x, double t) {
     }
     face_lag_[k] = w;
   }
-  for (size_t k = 0; k < box_edge_pairs_.size(); ++k) {
-    const BoxEdgePair& p = box_edge_pairs_[k];
-    const auto& e = surface_->edges[p.edge];
-    double s = 0.0;
-    const double d = Distance(x, t, p, nullptr, &s);
-    if (d > 0.0 && d < d_hat_) {
-      const double lagged = (*obstacles_)[p.obstacle].BoxEdgePointDistance(
-          p.box_edge, Vertex(x, e[0]), Vertex(x, e[1]), edge_lag_[k], t);
-      excess = std::max(excess, (lagged - d) / d);
-    }
-    edge_lag_[k] = s;
-  }
   return excess;
-}
-
-void MeshObstaclePairs::RestoreLags(const Lags& lags) {
-  face_lag_ = lags.face;
-  edge_lag_ = lags.edge;
 }
 
 void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const char* family,
@@ -265,8 +256,10 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     term.family = family;
     term.impulsive = true;
     term.nodes = {f[0], f[1], f[2]};
-    term.cost = std::make_unique<FaceObstacleGap>(&(*obstacles_)[p.obstacle], p.feature, time,
-                                                  d_hat_, margin_, &face_lag_[k]);
+    const Obstacle& obstacle = (*obstacles_)[p.obstacle];
+    term.cost =
+        std::make_unique<FaceObstacleGap>(&obstacle, p.feature, time, d_hat_, margin_,
+                                          obstacle.FeatureRadius() > 0.0 ? &face_lag_[k] : nullptr);
     term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->face_weights[p.face], kappa);
     potential->AddTerm(std::move(term));
   }
@@ -279,7 +272,7 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
     term.cost = std::make_unique<EdgeBoxEdgeGap>(&(*obstacles_)[p.obstacle], p.box_edge, time,
-                                                 d_hat_, margin_, &edge_lag_[k]);
+                                                 d_hat_, margin_);
     term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->edge_weights[p.edge], kappa);
     potential->AddTerm(std::move(term));
   }

@@ -7,12 +7,17 @@
 // kappa's balance.
 //
 // Barrier (FaceObstacleGap, EdgeBoxEdgeGap in contact/contact_terms.h): weight
-// the face's / edge's weight (contact/contact_surface.h); the gap is that of a
-// lagged closest point (barycentric weights of the face, parameter on the
-// cloth edge), set when a pair is added and by Lag, so that it is convex in the
+// the face's / edge's weight (contact/contact_surface.h). Against a sphere's
+// centre the gap is that of the face's closest point lagged as barycentric
+// weights (set when a pair is added and by Lag), so that it is convex in the
 // vertices within a solve, like the edge-obstacle pairs' (docs/contact.md,
-// "Edges against obstacles"). Evaluation failures, collision detection and the
-// checks use the true distances.
+// "Edges against obstacles"); the lagged gap exceeds the true one by about
+// |lag offset|^2 / (2 (R + d)). Against box corners and box edges (R = 0) that
+// excess is the offset itself, first order in how far the cloth slides within
+// a solve, and the barrier then held the cloth back too weakly (it stalled
+// against the collision detection at the margin while sliding off a box edge),
+// so those pairs use the true distance. Evaluation failures, collision
+// detection and the checks use the true distances.
 //
 // Cost: each face or edge is bounded by a ball (centre: the mean of its
 // vertices; for a path, of the start vertices; radius: the farthest vertex
@@ -55,15 +60,13 @@ class MeshObstaclePairs {
   // True if a pair within d_hat at x is not in the set.
   bool Missing(const double* x, double t) const;
 
-  // Re-lags every pair's closest point at x; returns the largest relative
-  // excess (d_lagged - d) / d of the previous lag over pairs within d_hat.
+  // Re-lags every sphere-face pair's closest point at x; returns the largest
+  // relative excess (d_lagged - d) / d of the previous lag over those pairs
+  // within d_hat.
   double Lag(const double* x, double t);
-  struct Lags {
-    std::vector<Eigen::Vector3d> face;
-    std::vector<double> edge;
-  };
-  Lags SavedLags() const { return {face_lag_, edge_lag_}; }
-  void RestoreLags(const Lags& lags);
+  using Lags = std::vector<Eigen::Vector3d>;
+  Lags SavedLags() const { return face_lag_; }
+  void RestoreLags(const Lags& lags) { face_lag_ = lags; }
 
   // Barrier terms of every pair (family `family`, kind kPotential, impulsive),
   // reading the obstacle time and kappa through the pointers. The terms point
@@ -143,7 +146,6 @@ class MeshObstaclePairs {
   std::vector<FacePair> face_pairs_;         // sorted
   std::vector<Eigen::Vector3d> face_lag_;    // barycentric weights per face pair
   std::vector<BoxEdgePair> box_edge_pairs_;  // sorted
-  std::vector<double> edge_lag_;             // parameter on the cloth edge per pair
 };
 
 }  // namespace ipstep

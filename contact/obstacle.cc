@@ -453,23 +453,6 @@ double Obstacle::BoxEdgeDistance(int edge, const Eigen::Vector3d& a, const Eigen
   return r.distance;
 }
 
-double Obstacle::BoxEdgePointDistance(int edge, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                      double s, double t, Eigen::Vector3d* grad_a,
-                                      Eigen::Vector3d* grad_b) const {
-  Eigen::Vector3d p, q;
-  BoxEdge(edge, t, &p, &q);
-  const Eigen::Vector3d x = a + s * (b - a);
-  double beta = 0.0;
-  const double distance = PointSegmentDistance(x, p, q, &beta);
-  // The distance to a fixed segment: its gradient with respect to x is the
-  // unit vector from the closest point (beta does not contribute).
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  if (distance > 0.0) n = (x - p - beta * (q - p)) / distance;
-  if (grad_a) *grad_a = (1.0 - s) * n;
-  if (grad_b) *grad_b = s * n;
-  return distance;
-}
-
 double Obstacle::BoxEdgeTimeOfImpact(int edge, const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
                                      const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
                                      double t0, double t1, double margin) const {

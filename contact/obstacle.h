@@ -141,12 +141,6 @@ struct Obstacle {
   double BoxEdgeDistance(int edge, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t,
                          Eigen::Vector3d* grad_a = nullptr, Eigen::Vector3d* grad_b = nullptr,
                          double* s = nullptr) const;
-  // Distance from the fixed point a + s (b - a) to the box edge (>= the segment
-  // distance; convex in a and b: the distance of an affine function of them to
-  // a fixed segment), gradients (1 - s) n and s n.
-  double BoxEdgePointDistance(int edge, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              double s, double t, Eigen::Vector3d* grad_a = nullptr,
-                              Eigen::Vector3d* grad_b = nullptr) const;
   // Continuous collision detection of the segment moving linearly from
   // [a0, b0] (obstacle time t0) to [a1, b1] (time t1) against a box edge:
   // conservative advancement as FaceTimeOfImpact.

@@ -1,7 +1,8 @@
 // 3D faces and box edges: point-triangle and segment-segment distances against
 // brute-force sampling, closed forms and finite differences; their continuous
 // collision detection against sphere centres, box corners and box edges; the
-// face and box-edge barrier terms' Jacobians; the contact surface's faces.
+// face and box-edge barrier terms' Jacobians (lagged and true distances); the
+// contact surface's faces.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -390,17 +391,18 @@ TEST(FaceTerms, JacobiansMatchFiniteDifferencesAndFailInside) {
   const V corner = box.FaceFeature(7, 0.0);
   const V p = corner + V(-0.1, 0.02, -0.1), q = corner + V(0.1, 0.03, -0.05),
           r = corner + V(0.0, 0.025, 0.1);
-  const V wc = PointTriangleDistance(corner, p, q, r).weights;
-  FaceObstacleGap corner_gap(&box, 7, &time, d_hat, 0.0, &wc);
+  // Box features use the true distance (no lag).
+  FaceObstacleGap corner_gap(&box, 7, &time, d_hat, 0.0);
   CheckJacobian(corner_gap, {{p[0], p[1], p[2]}, {q[0], q[1], q[2]}, {r[0], r[1], r[2]}});
-  const double s_lag = 0.4;
-  EdgeBoxEdgeGap edge_gap(&box, 1, &time, d_hat, 0.0, &s_lag);
+  const double* t3[3] = {p.data(), q.data(), r.data()};
+  ASSERT_TRUE(corner_gap.Evaluate(t3, &residual, nullptr));
+  EXPECT_NEAR(residual, d_hat - PointTriangleDistance(corner, p, q, r).distance, 1e-14);
+  EdgeBoxEdgeGap edge_gap(&box, 1, &time, d_hat, 0.0);
   const V ea(0.1, 0.02, -0.4), eb(0.15, 0.03, -0.2);
   CheckJacobian(edge_gap, {{ea[0], ea[1], ea[2]}, {eb[0], eb[1], eb[2]}});
   const double* e[2] = {ea.data(), eb.data()};
   ASSERT_TRUE(edge_gap.Evaluate(e, &residual, nullptr));
-  EXPECT_NEAR(residual, d_hat - box.BoxEdgePointDistance(1, ea, eb, s_lag, time), 1e-14);
-  EXPECT_GE(box.BoxEdgePointDistance(1, ea, eb, s_lag, time), box.BoxEdgeDistance(1, ea, eb, time));
+  EXPECT_NEAR(residual, d_hat - box.BoxEdgeDistance(1, ea, eb, time), 1e-14);
   // Crossing the box edge (both ends outside the box): fails.
   const V fa(0.1, 0.0, -0.4), fb(0.1, 0.0, -0.2);
   const double* f[2] = {fa.data(), fb.data()};
