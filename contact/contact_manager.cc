@@ -727,7 +727,7 @@ void ContactManager::BeginStep(const double* x_n) {
   lags_done_ = 1;
   AdvanceObstacles(x_n);
   LagEdgeAlpha(x_n);
-  // Edge-obstacle, face and box-edge terms point into their lags, refilled above.
+  // Edge-obstacle and face terms point into their lags, refilled above.
   if (obstacle_pairs_ != old_obstacle_pairs || edge_pairs_ != old_edge_pairs ||
       edge_obstacle_pairs_ != old_edge_obstacle_pairs || !edge_obstacle_pairs_.empty() ||
       !mesh_pairs_->empty()) {
@@ -794,8 +794,8 @@ bool ContactManager::RefreshTerms(const double* x) {
       changed = true;
     }
   }
-  // Edge-obstacle, face and box-edge barriers use the closest point lagged at
-  // the start of the solve; re-lag and solve again while it is more than 1 %
+  // Edge-obstacle and face-sphere barriers use the closest point lagged at the
+  // start of the solve; re-lag and solve again while it is more than 1 %
   // farther than the true closest point for a pair in reach (at most
   // kMaxAlphaLags times).
   if (!changed && (!edge_obstacle_pairs_.empty() || !mesh_pairs_->empty()) &&

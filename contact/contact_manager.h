@@ -13,12 +13,15 @@
 // boundary (spatial-hash broad phase). A pair's barrier term (family "contact") is
 //   w_U kappa w_i B(d)  (contact/barrier.h)
 // with w_i the node's, the edge's or the face's weight. Edge-obstacle, face
-// and box-edge pairs have no friction terms; their barrier's gap is the
-// distance of the closest point of the edge / face lagged at the step start
-// (re-lagged and re-solved while it is more than 1 % farther than the true
-// closest point, at most 3 times per step): the true point-segment distance
-// is concave in the segment's rocking mode and Gauss-Newton then converged
-// linearly (docs/contact.md). Continuous collision detection, evaluation
+// and box-edge pairs have no friction terms. Against sphere / circle centres
+// and 2D box corners, an edge's or face's barrier gap is the distance of its
+// closest point lagged at the step start (re-lagged and re-solved while it is
+// more than 1 % farther than the true closest point, at most 3 times per
+// step): the true point-segment distance is concave in the segment's rocking
+// mode and Gauss-Newton then converged linearly (docs/contact.md). Faces
+// against 3D box corners and edges against 3D box edges use the true distance
+// (a lagged point's excess is first order in the slide there; see
+// contact/mesh_obstacle_pairs.h). Continuous collision detection, evaluation
 // failures and the checks use the true distance.
 // A node-obstacle pair's friction term (family "friction", contact/friction.h) is
 //   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged.
@@ -202,9 +205,9 @@ class ContactManager : public StepFilter {
   bool ExtendPairs(const double* a, const double* b, const std::vector<double>& reach,
                    double edge_grow);
   void RebuildBarrierTerms();
-  // Sets the lagged closest points (edge-obstacle parameters, and those of the
-  // face and box-edge pairs) at x; returns the largest relative excess
-  // (d_lagged - d) / d over pairs within d_hat before.
+  // Sets the lagged closest points (edge-obstacle parameters, and the
+  // barycentrics of the face-sphere pairs) at x; returns the largest relative
+  // excess (d_lagged - d) / d over pairs within d_hat before.
   double LagEdgeAlpha(const double* x);
   void LagFriction(const double* x, double t);
   void RebuildFrictionTerms();

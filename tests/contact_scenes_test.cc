@@ -161,7 +161,9 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"cloth_sphere", "backward_euler", "newton", 40, 0},
                       SceneCase{"cloth_sphere", "newmark", "newton", 40, 0},
                       SceneCase{"cloth_sphere", "backward_euler", "lbfgs", 40, 0},
-                      SceneCase{"cloth_sphere", "newmark", "lbfgs", 40, 0}),
+                      SceneCase{"cloth_sphere", "newmark", "lbfgs", 40, 0},
+                      SceneCase{"cloth_box", "backward_euler", "newton", 45, 0},
+                      SceneCase{"cloth_box", "newmark", "newton", 45, 0}),
     CaseName);
 
 // A particle at 100 m/s whose predictor lies far beyond a 2 mm wall.
