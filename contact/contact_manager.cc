@@ -73,6 +73,8 @@ ContactManager::ContactManager(IncrementalPotential* potential, const State* sta
     edge_slots_.push_back(slots);
   }
   for (const Obstacle& o : options_.obstacles) has_moving_obstacles_ |= o.is_moving();
+  mesh_pairs_ = std::make_unique<MeshObstaclePairs>(&surface_, &options_.obstacles, slot_free_,
+                                                    options_.d_hat, margin_);
   if (options_.self_contact && !surface_.edges.empty()) {
     double total = 0.0;
     for (const auto& e : surface_.edges) {
@@ -256,6 +258,8 @@ std::string ContactManager::FindPenetration(const double* x, double t) const {
       return out.str();
     }
   }
+  const std::string mesh = mesh_pairs_->FindPenetration(x, t);
+  if (!mesh.empty()) return mesh;
   std::vector<EdgePair> pairs;
   EdgeCandidates(x, x, 0.0, &pairs);
   for (const EdgePair& p : pairs) {
@@ -307,6 +311,7 @@ bool ContactManager::IsStepValid(const double* x) const {
   }
   if (!EdgeObstacleConflict(a, x, tau_).empty()) return false;
   if (EdgeObstacleTimeOfImpact(a, x, tau_, tau_) <= 1.0) return false;
+  if (mesh_pairs_->TimeOfImpact(a, x, tau_, tau_) <= 1.0) return false;
   if (options_.self_contact) {
     std::vector<EdgePair> pairs;
     EdgeCandidates(a, x, margin_, &pairs);
@@ -344,6 +349,7 @@ double ContactManager::MaxStepSize(const double* from, const double* to) const {
     }
   }
   t = std::min(t, EdgeObstacleTimeOfImpact(from, to, tau_, tau_));
+  t = std::min(t, mesh_pairs_->TimeOfImpact(from, to, tau_, tau_));
   t = std::clamp(t, 0.0, 1.0);
   // Edges against circles and boxes: halve until the path is clear.
   if (dim_ == 2 && t > 0.0) {
@@ -382,7 +388,7 @@ double ContactManager::MinDistance(const double* x, double reach) const {
     const double d = EdgeObstacleDistance(x, p);
     if (d < reach) best = std::min(best, d);
   }
-  return best;
+  return std::min(best, mesh_pairs_->MinDistance(x, tau_, reach));
 }
 
 int ContactManager::CountPairsWithin(const double* x, double reach) const {
@@ -402,7 +408,7 @@ int ContactManager::CountPairsWithin(const double* x, double reach) const {
   for (const EdgeObstaclePair& p : AllEdgeObstaclePairs(false)) {
     count += EdgeObstacleDistance(x, p) < reach;
   }
-  return count;
+  return count + mesh_pairs_->CountWithin(x, tau_, reach);
 }
 
 std::vector<std::string> ContactManager::DiagnosticNames() const {
@@ -454,6 +460,9 @@ bool ContactManager::ExtendPairs(const double* a, const double* b, const std::ve
       added = true;
     }
   }
+  std::vector<double> travel(options_.obstacles.size());
+  for (size_t o = 0; o < travel.size(); ++o) travel[o] = ObstacleTravel(static_cast<int>(o));
+  added |= mesh_pairs_->Extend(a, tau_, reach, travel);
   std::vector<EdgePair> candidates;
   EdgeCandidates(a, b, options_.d_hat + edge_grow, &candidates);
   for (const EdgePair& pair : candidates) {
@@ -495,6 +504,7 @@ void ContactManager::RebuildBarrierTerms() {
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.edge_weights[pair.edge], &kappa_);
     potential_->AddTerm(std::move(term));
   }
+  mesh_pairs_->AddBarrierTerms(potential_, kContactFamily, &tau_, &kappa_);
   for (const EdgePair& pair : edge_pairs_) {
     const auto& e = surface_.edges[pair.edge];
     Term term;
@@ -523,7 +533,7 @@ double ContactManager::LagEdgeAlpha(const double* x) {
     }
     edge_obstacle_alpha_[k] = alpha;
   }
-  return excess;
+  return std::max(excess, mesh_pairs_->Lag(x, tau_));
 }
 
 void ContactManager::LagFriction(const double* x, double t) {
@@ -609,6 +619,7 @@ void ContactManager::AdvanceObstacles(const double* x) {
     }
   }
   first = std::min(first, EdgeObstacleTimeOfImpact(x, x, tau_, t_next_));
+  first = std::min(first, mesh_pairs_->TimeOfImpact(x, x, tau_, t_next_));
   if (first > 1.0) {
     tau_ = t_next_;
   } else {
@@ -657,6 +668,7 @@ void ContactManager::UpdateKappa(const double* x_n) {
         for (int k = 0; k < dim_; ++k) g_b[dim_ * node + k] += scale * grad[end][k];
       }
     }
+    mesh_pairs_->AddBarrierGradient(x_n, tau_, w_u, &g_b);
     const TermKind kinds[3] = {TermKind::kInertia, TermKind::kPotential, TermKind::kDissipation};
     Eigen::VectorXd gradient(n);
     bool ok = true;
@@ -700,6 +712,7 @@ void ContactManager::BeginStep(const double* x_n) {
   edge_pairs_.clear();
   edge_obstacle_pairs_.clear();
   edge_obstacle_alpha_.clear();
+  mesh_pairs_->Clear();
   alpha_lags_ = 0;
   const Eigen::VectorXd& x_tilde = context_->x_tilde;
   std::vector<double> reach(surface_.nodes.size());
@@ -726,9 +739,10 @@ void ContactManager::BeginStep(const double* x_n) {
   lags_done_ = 1;
   AdvanceObstacles(x_n);
   LagEdgeAlpha(x_n);
-  // Edge-obstacle terms point into edge_obstacle_alpha_, refilled above.
+  // Edge-obstacle and face terms point into their lags, refilled above.
   if (obstacle_pairs_ != old_obstacle_pairs || edge_pairs_ != old_edge_pairs ||
-      edge_obstacle_pairs_ != old_edge_obstacle_pairs || !edge_obstacle_pairs_.empty()) {
+      edge_obstacle_pairs_ != old_edge_obstacle_pairs || !edge_obstacle_pairs_.empty() ||
+      !mesh_pairs_->empty()) {
     RebuildBarrierTerms();
   }
   RebuildFrictionTerms();
@@ -743,7 +757,8 @@ bool ContactManager::RefreshTerms(const double* x) {
   // Pairs within d_hat of the solution that the set missed (with margin d_hat).
   const std::vector<double> reach(surface_.nodes.size(), options_.d_hat);
   const double gap_reach = options_.d_hat;
-  const size_t before = obstacle_pairs_.size() + edge_pairs_.size() + edge_obstacle_pairs_.size();
+  const size_t before = obstacle_pairs_.size() + edge_pairs_.size() + edge_obstacle_pairs_.size() +
+                        mesh_pairs_->size();
   // Only add pairs if some pair within d_hat is missing.
   bool missing = false;
   for (size_t s = 0; s < surface_.nodes.size() && !missing; ++s) {
@@ -766,6 +781,7 @@ bool ContactManager::RefreshTerms(const double* x) {
       }
     }
   }
+  if (!missing) missing = mesh_pairs_->Missing(x, tau_);
   if (!missing && options_.self_contact) {
     std::vector<EdgePair> pairs;
     EdgeCandidates(x, x, options_.d_hat, &pairs);
@@ -783,21 +799,27 @@ bool ContactManager::RefreshTerms(const double* x) {
   }
   if (missing || changed) {
     ExtendPairs(x, x, reach, gap_reach);
-    if (obstacle_pairs_.size() + edge_pairs_.size() + edge_obstacle_pairs_.size() != before) {
+    if (obstacle_pairs_.size() + edge_pairs_.size() + edge_obstacle_pairs_.size() +
+            mesh_pairs_->size() !=
+        before) {
       RebuildBarrierTerms();
       changed = true;
     }
   }
-  // Edge-obstacle barriers use the closest point lagged at the start of the
-  // solve; re-lag and solve again while it is more than 1 % farther than the
-  // true closest point for a pair in reach (at most kMaxAlphaLags times).
-  if (!changed && !edge_obstacle_pairs_.empty() && alpha_lags_ < kMaxAlphaLags) {
+  // Edge-obstacle and face-sphere barriers use the closest point lagged at the
+  // start of the solve; re-lag and solve again while it is more than 1 %
+  // farther than the true closest point for a pair in reach (at most
+  // kMaxAlphaLags times).
+  if (!changed && (!edge_obstacle_pairs_.empty() || !mesh_pairs_->empty()) &&
+      alpha_lags_ < kMaxAlphaLags) {
     std::vector<double> saved = edge_obstacle_alpha_;
+    const MeshObstaclePairs::Lags saved_mesh = mesh_pairs_->SavedLags();
     if (LagEdgeAlpha(x) > kAlphaLagTolerance) {
       ++alpha_lags_;
       changed = true;
     } else {
       edge_obstacle_alpha_ = saved;
+      mesh_pairs_->RestoreLags(saved_mesh);
     }
   }
   if (!changed && friction_enabled_ && lags_done_ < friction_.iterations) {

@@ -5,18 +5,25 @@
 //
 // Pairs: contact nodes against obstacles, contact edges (2D boundary edges, 3D
 // cloth springs; contact/contact_surface.h) against the edge features of
-// spheres / circles and 2D boxes (Obstacle::EdgeDistance), and (2D
+// spheres / circles and 2D boxes (Obstacle::EdgeDistance), 3D cloth faces
+// against the face features of spheres and 3D boxes (centre, corners;
+// Obstacle::FaceDistance) and 3D cloth edges against 3D box edges
+// (Obstacle::BoxEdgeDistance; both in contact/mesh_obstacle_pairs.h), and (2D
 // self-contact) boundary nodes against boundary edges of other parts of the
 // boundary (spatial-hash broad phase). A pair's barrier term (family "contact") is
 //   w_U kappa w_i B(d)  (contact/barrier.h)
-// with w_i the node's or the edge's weight. Edge-obstacle pairs have no
-// friction terms; their barrier's gap is the distance of the edge's closest
-// point lagged at the step start (re-lagged and re-solved while it is more
-// than 1 % farther than the true closest point, at most 3 times per step):
-// the true point-segment distance is concave in the segment's rocking mode and
-// Gauss-Newton then converged linearly (docs/contact.md). Continuous collision
-// detection, evaluation failures and the checks use the true distance.
-// and its friction term (family "friction", contact/friction.h) is
+// with w_i the node's, the edge's or the face's weight. Edge-obstacle, face
+// and box-edge pairs have no friction terms. Against sphere / circle centres
+// and 2D box corners, an edge's or face's barrier gap is the distance of its
+// closest point lagged at the step start (re-lagged and re-solved while it is
+// more than 1 % farther than the true closest point, at most 3 times per
+// step): the true point-segment distance is concave in the segment's rocking
+// mode and Gauss-Newton then converged linearly (docs/contact.md). Faces
+// against 3D box corners and edges against 3D box edges use the true distance
+// (a lagged point's excess is first order in the slide there; see
+// contact/mesh_obstacle_pairs.h). Continuous collision detection, evaluation
+// failures and the checks use the true distance.
+// A node-obstacle pair's friction term (family "friction", contact/friction.h) is
 //   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged.
 //
 // Within a step:
@@ -55,6 +62,7 @@
 #include <Eigen/Core>
 
 #include "contact/contact_surface.h"
+#include "contact/mesh_obstacle_pairs.h"
 #include "contact/obstacle.h"
 #include "contact/spatial_hash.h"
 #include "core/incremental_potential.h"
@@ -116,7 +124,7 @@ class ContactManager : public StepFilter {
   const std::vector<Obstacle>& obstacles() const { return options_.obstacles; }
   int num_barrier_pairs() const {
     return static_cast<int>(obstacle_pairs_.size() + edge_pairs_.size() +
-                            edge_obstacle_pairs_.size());
+                            edge_obstacle_pairs_.size() + mesh_pairs_->size());
   }
   int num_friction_contacts() const { return num_friction_contacts_; }
   std::string Summary() const;
@@ -197,8 +205,9 @@ class ContactManager : public StepFilter {
   bool ExtendPairs(const double* a, const double* b, const std::vector<double>& reach,
                    double edge_grow);
   void RebuildBarrierTerms();
-  // Sets the lagged closest-point parameters at x; returns the largest
-  // relative excess (d_lagged - d) / d over pairs within d_hat before.
+  // Sets the lagged closest points (edge-obstacle parameters, and the
+  // barycentrics of the face-sphere pairs) at x; returns the largest relative
+  // excess (d_lagged - d) / d over pairs within d_hat before.
   double LagEdgeAlpha(const double* x);
   void LagFriction(const double* x, double t);
   void RebuildFrictionTerms();
@@ -236,6 +245,8 @@ class ContactManager : public StepFilter {
   // gap is the distance of that fixed point of the edge; see RefreshTerms).
   std::vector<double> edge_obstacle_alpha_;
   int alpha_lags_ = 0;
+  // 3D faces against face features, 3D edges against box edges.
+  std::unique_ptr<MeshObstaclePairs> mesh_pairs_;
   std::vector<std::array<int, 2>> edge_slots_;  // slots of each edge's nodes
 
   bool friction_enabled_ = false;

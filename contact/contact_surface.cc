@@ -164,6 +164,28 @@ ContactSurface BuildContactSurface(const Scene& scene) {
   for (const auto& e : surface.edges) {
     surface.edge_weights.push_back(0.25 * (weight[e[0]] + weight[e[1]]));
   }
+  if (scene.dimension == 3) {
+    // Faces: 3-cliques i < j < k of the edge graph.
+    std::vector<std::vector<int>> adjacent(n);
+    for (const auto& e : surface.edges) {
+      adjacent[e[0]].push_back(e[1]);
+      adjacent[e[1]].push_back(e[0]);
+    }
+    for (auto& list : adjacent) std::sort(list.begin(), list.end());
+    for (const auto& e : surface.edges) {
+      const int i = std::min(e[0], e[1]), j = std::max(e[0], e[1]);
+      for (int k : adjacent[i]) {
+        if (k <= j || !std::binary_search(adjacent[j].begin(), adjacent[j].end(), k)) continue;
+        // Collinear at rest (a spring along two others): no triangle.
+        const double lij = Length(scene, i, j), ljk = Length(scene, j, k),
+                     lik = Length(scene, i, k);
+        const double longest = std::max({lij, ljk, lik});
+        if (lij + ljk + lik - 2.0 * longest <= 1e-9 * longest) continue;
+        surface.faces.push_back({i, j, k});
+        surface.face_weights.push_back((weight[i] + weight[j] + weight[k]) / 12.0);
+      }
+    }
+  }
   return surface;
 }
 

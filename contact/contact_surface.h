@@ -19,6 +19,15 @@
 // structural springs and both shear diagonals. Weight of an edge: half the
 // mean weight of its two nodes (2D: about half its length; 3D: a^2 / 2 in a
 // grid), so an edge's barrier is on the scale of a node's.
+// Faces (3D only; checked against spheres and 3D boxes, contact/obstacle.h):
+// every triangle of contact edges (3-clique of the edge graph) whose vertices
+// are not collinear at the initial positions. In a grid with both shear
+// diagonals each quad gives four overlapping triangles (two per diagonal);
+// every point of the quad lies in exactly two of them, so the redundancy costs
+// terms, not coverage. Weight of a face: a quarter of the mean weight of its
+// three nodes (a^2 / 4 in a grid, half the triangle's area: the two triangles
+// over each point of a quad add up to the quad's area, as the nodes' weights
+// do), so a face's barrier is on the scale of a node's.
 #pragma once
 
 #include <array>
@@ -33,6 +42,8 @@ struct ContactSurface {
   std::vector<double> weights;            // per entry of `nodes`
   std::vector<std::array<int, 2>> edges;  // 2D: boundary edges; 3D: springs (both nodes in `nodes`)
   std::vector<double> edge_weights;       // per entry of `edges`
+  std::vector<std::array<int, 3>> faces;  // 3D: triangles of `edges`, ascending node ids
+  std::vector<double> face_weights;       // per entry of `faces`
 };
 
 ContactSurface BuildContactSurface(const Scene& scene);

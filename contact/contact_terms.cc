@@ -65,6 +65,69 @@ bool EdgeObstacleGap::Evaluate(double const* const* x, double* residuals,
   return true;
 }
 
+namespace {
+
+// Residual max(d_hat - d, 0) and its Jacobian blocks -grad[block] (zero out of
+// reach), `blocks` blocks of 3 components.
+void WriteGapResidual(double d, double d_hat, const Eigen::Vector3d* grad, int blocks,
+                      double* residuals, double** jacobians) {
+  const double u = d_hat - d;
+  const bool active = u > 0.0;
+  residuals[0] = active ? u : 0.0;
+  if (jacobians == nullptr) return;
+  for (int block = 0; block < blocks; ++block) {
+    if (jacobians[block] == nullptr) continue;
+    for (int k = 0; k < 3; ++k) jacobians[block][k] = active ? -grad[block][k] : 0.0;
+  }
+}
+
+}  // namespace
+
+FaceObstacleGap::FaceObstacleGap(const Obstacle* obstacle, int feature, const double* time,
+                                 double d_hat, double min_distance, const Eigen::Vector3d* weights)
+    : obstacle_(obstacle),
+      feature_(feature),
+      time_(time),
+      d_hat_(d_hat),
+      min_distance_(min_distance),
+      weights_(weights) {
+  set_num_residuals(1);
+  for (int b = 0; b < 3; ++b) mutable_parameter_block_sizes()->push_back(3);
+}
+
+bool FaceObstacleGap::Evaluate(double const* const* x, double* residuals,
+                               double** jacobians) const {
+  const Eigen::Vector3d a = ToPoint(x[0], 3), b = ToPoint(x[1], 3), c = ToPoint(x[2], 3);
+  Eigen::Vector3d grad[3];
+  double d = obstacle_->FaceDistance(feature_, a, b, c, *time_, grad);
+  if (!(d > min_distance_)) return false;
+  if (weights_ != nullptr) {
+    d = obstacle_->FacePointDistance(feature_, a, b, c, *weights_, *time_, grad);
+  }
+  WriteGapResidual(d, d_hat_, grad, 3, residuals, jacobians);
+  return true;
+}
+
+EdgeBoxEdgeGap::EdgeBoxEdgeGap(const Obstacle* obstacle, int box_edge, const double* time,
+                               double d_hat, double min_distance)
+    : obstacle_(obstacle),
+      box_edge_(box_edge),
+      time_(time),
+      d_hat_(d_hat),
+      min_distance_(min_distance) {
+  set_num_residuals(1);
+  for (int b = 0; b < 2; ++b) mutable_parameter_block_sizes()->push_back(3);
+}
+
+bool EdgeBoxEdgeGap::Evaluate(double const* const* x, double* residuals, double** jacobians) const {
+  const Eigen::Vector3d a = ToPoint(x[0], 3), b = ToPoint(x[1], 3);
+  Eigen::Vector3d grad[2];
+  const double d = obstacle_->BoxEdgeDistance(box_edge_, a, b, *time_, &grad[0], &grad[1]);
+  if (!(d > min_distance_)) return false;
+  WriteGapResidual(d, d_hat_, grad, 2, residuals, jacobians);
+  return true;
+}
+
 PointEdgeGap::PointEdgeGap(double d_hat, double min_distance)
     : d_hat_(d_hat), min_distance_(min_distance) {
   set_num_residuals(1);

@@ -60,6 +60,45 @@ class EdgeObstacleGap : public ceres::CostFunction {
   const double* alpha_;
 };
 
+// 3D face [a, b, c] (blocks 0, 1, 2, three components each) against a face
+// feature of an obstacle (sphere centre or 3D box corner,
+// Obstacle::FaceDistance). With `weights` (read at every evaluation; the
+// contact manager lags them for sphere centres) the barrier's gap is the
+// distance of the fixed point w[0] a + w[1] b + w[2] c: convex in the
+// vertices; without (null), the true point-triangle distance. Evaluation fails
+// when the true distance is at most min_distance.
+class FaceObstacleGap : public ceres::CostFunction {
+ public:
+  FaceObstacleGap(const Obstacle* obstacle, int feature, const double* time, double d_hat,
+                  double min_distance, const Eigen::Vector3d* weights = nullptr);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  const Obstacle* obstacle_;
+  int feature_;
+  const double* time_;
+  double d_hat_;
+  double min_distance_;
+  const Eigen::Vector3d* weights_;
+};
+
+// 3D edge [a, b] (blocks 0, 1) against an edge of a 3D box: the barrier's gap
+// is the true segment-segment distance (Obstacle::BoxEdgeDistance); evaluation
+// fails when it is at most min_distance.
+class EdgeBoxEdgeGap : public ceres::CostFunction {
+ public:
+  EdgeBoxEdgeGap(const Obstacle* obstacle, int box_edge, const double* time, double d_hat,
+                 double min_distance);
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+
+ private:
+  const Obstacle* obstacle_;
+  int box_edge_;
+  const double* time_;
+  double d_hat_;
+  double min_distance_;
+};
+
 // 2D: point p (block 0) against the edge [a, b] (blocks 1, 2).
 class PointEdgeGap : public ceres::CostFunction {
  public:

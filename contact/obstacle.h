@@ -52,7 +52,8 @@ struct Obstacle {
   // their own. So an edge's pairs are with the obstacle's "edge features":
   // sphere: its centre (radius R), 2D box: its four corners (radius 0); planes
   // (a segment meets a half-space only where an end point does) and 3D boxes
-  // (not handled: box edges against segments) have none.
+  // (their corners are ends of box edges: segments meet 3D boxes through the
+  // box edges, NumBoxEdges below) have none.
   int NumEdgeFeatures() const;
   // World position of a feature at time t.
   Eigen::Vector3d EdgeFeature(int feature, double t) const;
@@ -86,6 +87,68 @@ struct Obstacle {
                           double t1, double margin) const;
 
   static constexpr double kEdgeGapFraction = 0.1;
+
+  // 3D faces (triangles [a, b, c] of contact edges, contact/contact_surface.h)
+  // and 3D box edges. Both convex, a triangle and an obstacle touch first, in
+  // a continuous motion, where a vertex meets the obstacle (node pairs), a
+  // triangle edge meets it (edge pairs, and below against box edges) or the
+  // triangle's interior meets an extreme point of the obstacle: for a sphere
+  // its centre comes within R, for a box one of its corners touches the face
+  // (an edge or a face of the box touching the triangle's interior first also
+  // touches it at a corner or along a triangle edge). So a face's pairs are
+  // with the obstacle's "face features": 3D sphere: its centre (radius R);
+  // 3D box: its 8 corners (radius 0; corner k has the upper bound in axis j
+  // where bit j of k is set); planes, and everything in 2D, have none.
+  int NumFaceFeatures() const;
+  // World position of a face feature at time t.
+  Eigen::Vector3d FaceFeature(int feature, double t) const;
+  // R of the sphere's features, 0 for box corners.
+  double FeatureRadius() const { return type == ObstacleType::kSphere ? radius : 0.0; }
+  // d = |c - closest point of the triangle| - R (contact/point_triangle.h);
+  // gradients with respect to the vertices (w_i n) into grad[0..2] and the
+  // closest point's barycentric weights when not null.
+  double FaceDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                      const Eigen::Vector3d& c, double t, Eigen::Vector3d* grad = nullptr,
+                      Eigen::Vector3d* weights = nullptr) const;
+  // The same for the fixed point w[0] a + w[1] b + w[2] c (>= FaceDistance):
+  // convex in the vertices (the distance of an affine function of them to a
+  // fixed point).
+  double FacePointDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c, const Eigen::Vector3d& w, double t,
+                           Eigen::Vector3d* grad = nullptr) const;
+  // Continuous collision detection of the triangle moving linearly from
+  // v0[0..2] (obstacle time t0) to v1[0..2] (time t1) against a face feature,
+  // with the target of EdgeTimeOfImpact (the goal max(margin,
+  // kEdgeGapFraction d(0))) by conservative advancement: relative to the
+  // obstacle no point of the triangle moves farther than the largest vertex
+  // displacement D over the path, so from s the gap stays above the goal up to
+  // s + (d(s) - goal) / D; s advances by that until the gap is within 1 % of
+  // d(0) - goal above the goal (returns s: the first fraction that is not
+  // proved safe; every fraction below is) or the path is covered (kNoImpact).
+  // 0 if d(0) <= margin. At most kMaxAdvancements advances (then returns s).
+  double FaceTimeOfImpact(int feature, const Eigen::Vector3d* v0, const Eigen::Vector3d* v1,
+                          double t0, double t1, double margin) const;
+
+  // 3D box edges (12; edge k is parallel to axis k / 4, at the lower or upper
+  // bound of the next axis (bit 0 of k % 4) and of the one after (bit 1)),
+  // against contact edges (segment-segment, contact/segment_segment.h).
+  int NumBoxEdges() const;
+  // End points (lower and upper in the edge's axis) at time t.
+  void BoxEdge(int edge, double t, Eigen::Vector3d* p, Eigen::Vector3d* q) const;
+  // Distance between the segment [a, b] and box edge `edge` at time t;
+  // gradients with respect to a and b ((1 - s) n and s n), and the closest
+  // point's parameter s on [a, b], when not null.
+  double BoxEdgeDistance(int edge, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t,
+                         Eigen::Vector3d* grad_a = nullptr, Eigen::Vector3d* grad_b = nullptr,
+                         double* s = nullptr) const;
+  // Continuous collision detection of the segment moving linearly from
+  // [a0, b0] (obstacle time t0) to [a1, b1] (time t1) against a box edge:
+  // conservative advancement as FaceTimeOfImpact.
+  double BoxEdgeTimeOfImpact(int edge, const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
+                             const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, double t0,
+                             double t1, double margin) const;
+
+  static constexpr int kMaxAdvancements = 200;
 };
 
 // Distance from point c to the segment [a, b]; alpha of the closest point

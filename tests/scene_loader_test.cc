@@ -93,9 +93,10 @@ std::vector<double> VelocityOf(const Scene& scene, int node) {
 // ---- Built-in scenes ------------------------------------------------------
 
 TEST(BuiltinScenesTest, NamesAndTexts) {
-  EXPECT_EQ(BuiltinSceneNames(),
-            (std::set<std::string>{"cloth", "cloth_sphere", "drop", "fpu", "impact", "oscillator",
-                                   "slope", "spring_pendulum", "squeeze", "two_squares"}));
+  EXPECT_EQ(
+      BuiltinSceneNames(),
+      (std::set<std::string>{"cloth", "cloth_box", "cloth_sphere", "drop", "fpu", "impact",
+                             "oscillator", "slope", "spring_pendulum", "squeeze", "two_squares"}));
   SceneLoadOptions options;
   options.extra_effects = EffectRegistry::Global().UserNames();  // contact, friction
   for (const std::string& name : BuiltinSceneNames()) {
@@ -810,7 +811,7 @@ TEST(BadInputTest, UnreadableFiles) {
 TEST(BadInputTest, UnknownBuiltinName) {
   std::string message = InputErrorOf([] { LoadScene("no_such_scene"); });
   EXPECT_NE(message.find("no_such_scene"), std::string::npos) << message;
-  EXPECT_NE(message.find("cloth, cloth_sphere, drop, fpu, impact, oscillator, slope, "
+  EXPECT_NE(message.find("cloth, cloth_box, cloth_sphere, drop, fpu, impact, oscillator, slope, "
                          "spring_pendulum, squeeze, two_squares"),
             std::string::npos)
       << message;

@@ -1,0 +1,447 @@
+#include "contact/mesh_obstacle_pairs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <utility>
+
+#include "contact/barrier.h"
+#include "contact/contact_terms.h"
+#include "contact/point_triangle.h"
+
+namespace ipstep {
+
+namespace {
+
+// Slot (index into the ascending `nodes`) of a node.
+int SlotOf(const std::vector<int>& nodes, int node) {
+  return static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+}
+
+// Merges the sorted `added` into the sorted `pairs` (skipping those already
+// there), inserting lag(pair) into the parallel `lags`; true if any was new.
+template <class Pair, class Lag, class Value>
+bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs, std::vector<Value>* lags,
+                const Lag& lag) {
+  std::vector<Pair> merged;
+  std::vector<Value> merged_lags;
+  merged.reserve(pairs->size() + added.size());
+  merged_lags.reserve(pairs->size() + added.size());
+  bool any = false;
+  size_t i = 0, j = 0;
+  while (i < pairs->size() || j < added.size()) {
+    if (j == added.size() || (i < pairs->size() && (*pairs)[i] < added[j])) {
+      merged.push_back((*pairs)[i]);
+      merged_lags.push_back((*lags)[i]);
+      ++i;
+    } else if (i < pairs->size() && (*pairs)[i] == added[j]) {
+      ++j;
+    } else {
+      merged.push_back(added[j]);
+      merged_lags.push_back(lag(added[j]));
+      any = true;
+      ++j;
+    }
+  }
+  if (any) {
+    *pairs = std::move(merged);
+    *lags = std::move(merged_lags);
+  }
+  return any;
+}
+
+// The same without lags.
+template <class Pair>
+bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs) {
+  std::vector<Pair> merged;
+  std::set_union(pairs->begin(), pairs->end(), added.begin(), added.end(),
+                 std::back_inserter(merged));
+  const bool any = merged.size() != pairs->size();
+  *pairs = std::move(merged);
+  return any;
+}
+
+}  // namespace
+
+MeshObstaclePairs::MeshObstaclePairs(const ContactSurface* surface,
+                                     const std::vector<Obstacle>* obstacles,
+                                     std::vector<bool> slot_free, double d_hat, double margin)
+    : surface_(surface),
+      obstacles_(obstacles),
+      slot_free_(std::move(slot_free)),
+      d_hat_(d_hat),
+      margin_(margin) {
+  for (const Obstacle& o : *obstacles_) {
+    active_ |= (o.NumFaceFeatures() > 0 && !surface_->faces.empty()) ||
+               (o.NumBoxEdges() > 0 && !surface_->edges.empty());
+  }
+  for (const auto& f : surface_->faces) {
+    face_slots_.push_back({SlotOf(surface_->nodes, f[0]), SlotOf(surface_->nodes, f[1]),
+                           SlotOf(surface_->nodes, f[2])});
+  }
+  for (const auto& e : surface_->edges) {
+    edge_slots_.push_back({SlotOf(surface_->nodes, e[0]), SlotOf(surface_->nodes, e[1])});
+  }
+}
+
+void MeshObstaclePairs::Clear() {
+  face_pairs_.clear();
+  face_lag_.clear();
+  box_edge_pairs_.clear();
+}
+
+bool MeshObstaclePairs::FaceIsFree(int face) const {
+  const auto& s = face_slots_[face];
+  return slot_free_[s[0]] || slot_free_[s[1]] || slot_free_[s[2]];
+}
+
+bool MeshObstaclePairs::EdgeIsFree(int edge) const {
+  const auto& s = edge_slots_[edge];
+  return slot_free_[s[0]] || slot_free_[s[1]];
+}
+
+double MeshObstaclePairs::FaceReach(int face, const std::vector<double>& reach) const {
+  const auto& s = face_slots_[face];
+  return std::max({reach[s[0]], reach[s[1]], reach[s[2]]});
+}
+
+double MeshObstaclePairs::EdgeReach(int edge, const std::vector<double>& reach) const {
+  const auto& s = edge_slots_[edge];
+  return std::max(reach[s[0]], reach[s[1]]);
+}
+
+double MeshObstaclePairs::Distance(const double* x, double t, const FacePair& p,
+                                   Eigen::Vector3d* grad, Eigen::Vector3d* weights) const {
+  const auto& f = surface_->faces[p.face];
+  return (*obstacles_)[p.obstacle].FaceDistance(p.feature, Vertex(x, f[0]), Vertex(x, f[1]),
+                                                Vertex(x, f[2]), t, grad, weights);
+}
+
+double MeshObstaclePairs::Distance(const double* x, double t, const BoxEdgePair& p,
+                                   Eigen::Vector3d* grad, double* s) const {
+  const auto& e = surface_->edges[p.edge];
+  return (*obstacles_)[p.obstacle].BoxEdgeDistance(p.box_edge, Vertex(x, e[0]), Vertex(x, e[1]), t,
+                                                   grad ? &grad[0] : nullptr,
+                                                   grad ? &grad[1] : nullptr, s);
+}
+
+template <class Cutoff, class OnFace, class OnEdge>
+void MeshObstaclePairs::ForEachNear(const double* x, double t, bool free_only,
+                                    const Cutoff& face_cutoff, const Cutoff& edge_cutoff,
+                                    const std::vector<double>* travel, const OnFace& on_face,
+                                    const OnEdge& on_edge) const {
+  if (!active_) return;
+  const std::vector<Obstacle>& obstacles = *obstacles_;
+  const int num_obstacles = static_cast<int>(obstacles.size());
+  // A feature at distance D from the ball's centre m (minus R for a sphere) is
+  // at least D - rho from the primitive: it can be below the cutoff only if
+  // D < cutoff + rho. The obstacle's signed distance of m is a lower bound of
+  // every feature's D.
+  for (int f = 0; f < static_cast<int>(surface_->faces.size()); ++f) {
+    if (free_only && !FaceIsFree(f)) continue;
+    const auto& face = surface_->faces[f];
+    const Eigen::Vector3d v[3] = {Vertex(x, face[0]), Vertex(x, face[1]), Vertex(x, face[2])};
+    const Eigen::Vector3d m = (v[0] + v[1] + v[2]) / 3.0;
+    const double rho = std::sqrt(
+        std::max({(v[0] - m).squaredNorm(), (v[1] - m).squaredNorm(), (v[2] - m).squaredNorm()}));
+    const double cutoff = face_cutoff(f);
+    for (int o = 0; o < num_obstacles; ++o) {
+      const Obstacle& obstacle = obstacles[o];
+      const int features = obstacle.NumFaceFeatures();
+      if (features == 0) continue;
+      const double limit = cutoff + (travel ? (*travel)[o] : 0.0) + rho;
+      if (!(obstacle.Distance(m, t) < limit)) continue;
+      for (int k = 0; k < features; ++k) {
+        const double d = (obstacle.FaceFeature(k, t) - m).norm() - obstacle.FeatureRadius();
+        if (d < limit) on_face(FacePair{f, o, k});
+      }
+    }
+  }
+  for (int e = 0; e < static_cast<int>(surface_->edges.size()); ++e) {
+    if (free_only && !EdgeIsFree(e)) continue;
+    const auto& edge = surface_->edges[e];
+    const Eigen::Vector3d a = Vertex(x, edge[0]), b = Vertex(x, edge[1]);
+    const Eigen::Vector3d m = 0.5 * (a + b);
+    const double rho = 0.5 * (b - a).norm();
+    const double cutoff = edge_cutoff(e);
+    for (int o = 0; o < num_obstacles; ++o) {
+      const Obstacle& obstacle = obstacles[o];
+      const int box_edges = obstacle.NumBoxEdges();
+      if (box_edges == 0) continue;
+      const double limit = cutoff + (travel ? (*travel)[o] : 0.0) + rho;
+      if (!(obstacle.Distance(m, t) < limit)) continue;
+      for (int k = 0; k < box_edges; ++k) {
+        Eigen::Vector3d p, q;
+        obstacle.BoxEdge(k, t, &p, &q);
+        if (PointSegmentDistance(m, p, q) < limit) on_edge(BoxEdgePair{e, o, k});
+      }
+    }
+  }
+}
+
+bool MeshObstaclePairs::Extend(const double* x, double t, const std::vector<double>& reach,
+                               const std::vector<double>& travel) {
+  std::vector<FacePair> faces;
+  std::vector<BoxEdgePair> edges;
+  auto face_cutoff = [&](int f) { return d_hat_ + FaceReach(f, reach); };
+  auto edge_cutoff = [&](int e) { return d_hat_ + EdgeReach(e, reach); };
+  ForEachNear(
+      x, t, true, std::function<double(int)>(face_cutoff), std::function<double(int)>(edge_cutoff),
+      &travel,
+      [&](const FacePair& p) {
+        if (Distance(x, t, p) < face_cutoff(p.face) + travel[p.obstacle]) faces.push_back(p);
+      },
+      [&](const BoxEdgePair& p) {
+        if (Distance(x, t, p) < edge_cutoff(p.edge) + travel[p.obstacle]) edges.push_back(p);
+      });
+  // Visited in ascending order: already sorted.
+  const bool new_faces = MergePairs(faces, &face_pairs_, &face_lag_, [&](const FacePair& p) {
+    Eigen::Vector3d w;
+    Distance(x, t, p, nullptr, &w);
+    return w;
+  });
+  const bool new_edges = MergePairs(edges, &box_edge_pairs_);
+  return new_faces || new_edges;
+}
+
+bool MeshObstaclePairs::Missing(const double* x, double t) const {
+  bool missing = false;
+  auto cutoff = std::function<double(int)>([&](int) { return d_hat_; });
+  ForEachNear(
+      x, t, true, cutoff, cutoff, nullptr,
+      [&](const FacePair& p) {
+        if (!missing && Distance(x, t, p) < d_hat_ &&
+            !std::binary_search(face_pairs_.begin(), face_pairs_.end(), p)) {
+          missing = true;
+        }
+      },
+      [&](const BoxEdgePair& p) {
+        if (!missing && Distance(x, t, p) < d_hat_ &&
+            !std::binary_search(box_edge_pairs_.begin(), box_edge_pairs_.end(), p)) {
+          missing = true;
+        }
+      });
+  return missing;
+}
+
+double MeshObstaclePairs::Lag(const double* x, double t) {
+  double excess = 0.0;
+  for (size_t k = 0; k < face_pairs_.size(); ++k) {
+    const FacePair& p = face_pairs_[k];
+    if (!((*obstacles_)[p.obstacle].FeatureRadius() > 0.0)) continue;  // true distance
+    const auto& f = surface_->faces[p.face];
+    Eigen::Vector3d w;
+    const double d = Distance(x, t, p, nullptr, &w);
+    if (d > 0.0 && d < d_hat_) {
+      const double lagged = (*obstacles_)[p.obstacle].FacePointDistance(
+          p.feature, Vertex(x, f[0]), Vertex(x, f[1]), Vertex(x, f[2]), face_lag_[k], t);
+      excess = std::max(excess, (lagged - d) / d);
+    }
+    face_lag_[k] = w;
+  }
+  return excess;
+}
+
+void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const char* family,
+                                        const double* time, const double* kappa) const {
+  for (size_t k = 0; k < face_pairs_.size(); ++k) {
+    const FacePair& p = face_pairs_[k];
+    const auto& f = surface_->faces[p.face];
+    Term term;
+    term.kind = TermKind::kPotential;
+    term.family = family;
+    term.impulsive = true;
+    term.nodes = {f[0], f[1], f[2]};
+    const Obstacle& obstacle = (*obstacles_)[p.obstacle];
+    term.cost =
+        std::make_unique<FaceObstacleGap>(&obstacle, p.feature, time, d_hat_, margin_,
+                                          obstacle.FeatureRadius() > 0.0 ? &face_lag_[k] : nullptr);
+    term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->face_weights[p.face], kappa);
+    potential->AddTerm(std::move(term));
+  }
+  for (size_t k = 0; k < box_edge_pairs_.size(); ++k) {
+    const BoxEdgePair& p = box_edge_pairs_[k];
+    const auto& e = surface_->edges[p.edge];
+    Term term;
+    term.kind = TermKind::kPotential;
+    term.family = family;
+    term.impulsive = true;
+    term.nodes = {e[0], e[1]};
+    term.cost = std::make_unique<EdgeBoxEdgeGap>(&(*obstacles_)[p.obstacle], p.box_edge, time,
+                                                 d_hat_, margin_);
+    term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->edge_weights[p.edge], kappa);
+    potential->AddTerm(std::move(term));
+  }
+}
+
+double MeshObstaclePairs::TimeOfImpact(const double* a, const double* b, double t_a,
+                                       double t_b) const {
+  if (!active_) return Obstacle::kNoImpact;
+  double first = Obstacle::kNoImpact;
+  // In the obstacle's frame (features at time 0), the primitive's path lies in
+  // the ball around m (the mean of its start vertices, a point of the start
+  // primitive) through all its start and end vertices. A feature at distance
+  // D from m (D >= d(0), as m is on the primitive) keeps every gap d(s) >=
+  // D - rho, above the goal max(margin, phi d(0)) when D - rho > margin and
+  // (1 - phi) D > rho; the obstacle's signed distance of m bounds every D.
+  const double phi = Obstacle::kEdgeGapFraction;
+  auto safe = [&](double d, double rho) { return d - rho > margin_ && (1.0 - phi) * d > rho; };
+  for (const Obstacle& obstacle : *obstacles_) {
+    const int features = obstacle.NumFaceFeatures(), box_edges = obstacle.NumBoxEdges();
+    if (features == 0 && box_edges == 0) continue;
+    const Eigen::Vector3d shift_a = obstacle.velocity * t_a, shift_b = obstacle.velocity * t_b;
+    for (size_t f = 0; f < surface_->faces.size() && features > 0; ++f) {
+      const auto& face = surface_->faces[f];
+      Eigen::Vector3d v0[3], v1[3];
+      Eigen::Vector3d m = Eigen::Vector3d::Zero();
+      for (int i = 0; i < 3; ++i) {
+        v0[i] = Vertex(a, face[i]);
+        v1[i] = Vertex(b, face[i]);
+        m += (v0[i] - shift_a) / 3.0;
+      }
+      double rho2 = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        rho2 = std::max(
+            {rho2, (v0[i] - shift_a - m).squaredNorm(), (v1[i] - shift_b - m).squaredNorm()});
+      }
+      const double rho = std::sqrt(rho2);
+      if (safe(obstacle.Distance(m, 0.0), rho)) continue;
+      for (int k = 0; k < features; ++k) {
+        if (safe((obstacle.FaceFeature(k, 0.0) - m).norm() - obstacle.FeatureRadius(), rho)) {
+          continue;
+        }
+        first = std::min(first, obstacle.FaceTimeOfImpact(k, v0, v1, t_a, t_b, margin_));
+        if (first == 0.0) return 0.0;
+      }
+    }
+    for (size_t e = 0; e < surface_->edges.size() && box_edges > 0; ++e) {
+      const auto& edge = surface_->edges[e];
+      const Eigen::Vector3d a0 = Vertex(a, edge[0]), a1 = Vertex(b, edge[0]);
+      const Eigen::Vector3d b0 = Vertex(a, edge[1]), b1 = Vertex(b, edge[1]);
+      const Eigen::Vector3d m = 0.5 * (a0 + b0) - shift_a;
+      const double rho =
+          std::sqrt(std::max({(a0 - shift_a - m).squaredNorm(), (a1 - shift_b - m).squaredNorm(),
+                              (b1 - shift_b - m).squaredNorm()}));
+      if (safe(obstacle.Distance(m, 0.0), rho)) continue;
+      for (int k = 0; k < box_edges; ++k) {
+        Eigen::Vector3d p, q;
+        obstacle.BoxEdge(k, 0.0, &p, &q);
+        if (safe(PointSegmentDistance(m, p, q), rho)) continue;
+        first = std::min(first, obstacle.BoxEdgeTimeOfImpact(k, a0, a1, b0, b1, t_a, t_b, margin_));
+        if (first == 0.0) return 0.0;
+      }
+    }
+  }
+  return first;
+}
+
+std::string MeshObstaclePairs::FindPenetration(const double* x, double t) const {
+  std::ostringstream out;
+  auto cutoff = std::function<double(int)>([&](int) { return margin_; });
+  ForEachNear(
+      x, t, false, cutoff, cutoff, nullptr,
+      [&](const FacePair& p) {
+        const double d = Distance(x, t, p);
+        if (!out.str().empty() || d > margin_) return;
+        const auto& f = surface_->faces[p.face];
+        out << "face (" << f[0] << ", " << f[1] << ", " << f[2] << ") is inside or touching "
+            << (*obstacles_)[p.obstacle].name << " (distance " << d << ")";
+      },
+      [&](const BoxEdgePair& p) {
+        const double d = Distance(x, t, p);
+        if (!out.str().empty() || d > margin_) return;
+        const auto& e = surface_->edges[p.edge];
+        out << "edge (" << e[0] << ", " << e[1] << ") touches an edge of "
+            << (*obstacles_)[p.obstacle].name << " (distance " << d << ")";
+      });
+  if (!out.str().empty()) return out.str();
+  // Static only: a 3D box can hold a cloth edge passing through it (both ends
+  // outside, no box edge touched) or pierce a face with one of its edges (no
+  // corner or face edge touched). Continuous motion from a free state passes
+  // a touching configuration first, caught above; this is for the initial
+  // state.
+  for (const Obstacle& obstacle : *obstacles_) {
+    if (obstacle.NumBoxEdges() == 0) continue;
+    for (const auto& e : surface_->edges) {
+      const Eigen::Vector3d a = Vertex(x, e[0]), b = Vertex(x, e[1]);
+      if (obstacle.TimeOfImpact(a, b, t, t, margin_) <= 1.0) {
+        out << "edge (" << e[0] << ", " << e[1] << ") passes through " << obstacle.name;
+        return out.str();
+      }
+    }
+    Eigen::Vector3d p[12], q[12];
+    for (int k = 0; k < 12; ++k) obstacle.BoxEdge(k, t, &p[k], &q[k]);
+    for (const auto& f : surface_->faces) {
+      const Eigen::Vector3d a = Vertex(x, f[0]), b = Vertex(x, f[1]), c = Vertex(x, f[2]);
+      const Eigen::Vector3d m = (a + b + c) / 3.0;
+      const double rho = std::sqrt(
+          std::max({(a - m).squaredNorm(), (b - m).squaredNorm(), (c - m).squaredNorm()}));
+      if (obstacle.Distance(m, t) > rho) continue;
+      for (int k = 0; k < 12; ++k) {
+        if (SegmentIntersectsTriangle(p[k], q[k], a, b, c)) {
+          out << "an edge of " << obstacle.name << " passes through face (" << f[0] << ", " << f[1]
+              << ", " << f[2] << ")";
+          return out.str();
+        }
+      }
+    }
+  }
+  return "";
+}
+
+double MeshObstaclePairs::MinDistance(const double* x, double t, double reach) const {
+  double best = std::numeric_limits<double>::infinity();
+  auto cutoff = std::function<double(int)>([&](int) { return reach; });
+  ForEachNear(
+      x, t, false, cutoff, cutoff, nullptr,
+      [&](const FacePair& p) {
+        const double d = Distance(x, t, p);
+        if (d < reach) best = std::min(best, d);
+      },
+      [&](const BoxEdgePair& p) {
+        const double d = Distance(x, t, p);
+        if (d < reach) best = std::min(best, d);
+      });
+  return best;
+}
+
+int MeshObstaclePairs::CountWithin(const double* x, double t, double reach) const {
+  int count = 0;
+  auto cutoff = std::function<double(int)>([&](int) { return reach; });
+  ForEachNear(
+      x, t, false, cutoff, cutoff, nullptr,
+      [&](const FacePair& p) { count += Distance(x, t, p) < reach; },
+      [&](const BoxEdgePair& p) { count += Distance(x, t, p) < reach; });
+  return count;
+}
+
+void MeshObstaclePairs::AddBarrierGradient(const double* x, double t, double scale,
+                                           Eigen::VectorXd* g) const {
+  auto cutoff = std::function<double(int)>([&](int) { return d_hat_; });
+  auto add = [&](const std::vector<int>& nodes, const Eigen::Vector3d* grad, double d,
+                 double weight) {
+    if (!(d > 0.0 && d < d_hat_)) return;
+    const double factor = scale * weight * BarrierDerivative(d, d_hat_);
+    for (size_t i = 0; i < nodes.size(); ++i) g->segment<3>(3 * nodes[i]) += factor * grad[i];
+  };
+  ForEachNear(
+      x, t, false, cutoff, cutoff, nullptr,
+      [&](const FacePair& p) {
+        Eigen::Vector3d grad[3];
+        const double d = Distance(x, t, p, grad);
+        const auto& f = surface_->faces[p.face];
+        add({f[0], f[1], f[2]}, grad, d, surface_->face_weights[p.face]);
+      },
+      [&](const BoxEdgePair& p) {
+        Eigen::Vector3d grad[2];
+        const double d = Distance(x, t, p, grad);
+        const auto& e = surface_->edges[p.edge];
+        add({e[0], e[1]}, grad, d, surface_->edge_weights[p.edge]);
+      });
+}
+
+}  // namespace ipstep

@@ -1,0 +1,466 @@
+// 3D faces and box edges: point-triangle and segment-segment distances against
+// brute-force sampling, closed forms and finite differences; their continuous
+// collision detection against sphere centres, box corners and box edges; the
+// face and box-edge barrier terms' Jacobians (lagged and true distances); the
+// contact surface's faces.
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "contact/contact_surface.h"
+#include "contact/contact_terms.h"
+#include "contact/obstacle.h"
+#include "contact/point_triangle.h"
+#include "contact/segment_segment.h"
+#include "tests/finite_differences.h"
+
+namespace ipstep {
+namespace {
+
+using V = Eigen::Vector3d;
+
+// Smallest distance from p to the points w0 a + w1 b + w2 c on a barycentric
+// grid of n intervals per side (includes the vertices and edges).
+double SampledPointTriangle(const V& p, const V& a, const V& b, const V& c, int n) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; i + j <= n; ++j) {
+      const double u = double(i) / n, v = double(j) / n;
+      best = std::min(best, ((1 - u - v) * a + u * b + v * c - p).norm());
+    }
+  }
+  return best;
+}
+
+double SampledSegmentSegment(const V& a0, const V& a1, const V& b0, const V& b1, int n) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      const double s = double(i) / n, t = double(j) / n;
+      best = std::min(best, (a0 + s * (a1 - a0) - b0 - t * (b1 - b0)).norm());
+    }
+  }
+  return best;
+}
+
+V RandomPoint(std::mt19937* rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  return V(u(*rng), u(*rng), u(*rng));
+}
+
+TEST(PointTriangle, KnownRegions) {
+  const V a(0, 0, 0), b(2, 0, 0), c(0, 2, 0);
+  // Above the interior: the projection.
+  PointTriangleDistanceResult r = PointTriangleDistance(V(0.5, 0.5, 0.3), a, b, c);
+  EXPECT_NEAR(r.distance, 0.3, 1e-15);
+  EXPECT_NEAR(r.weights[1], 0.25, 1e-15);
+  EXPECT_NEAR(r.weights[2], 0.25, 1e-15);
+  EXPECT_NEAR(r.grad_p[2], 1.0, 1e-15);
+  EXPECT_NEAR(r.grad_a[2], -0.5, 1e-15);
+  // Beside the hypotenuse (edge region of b-c): closest point (1, 1, 0).
+  r = PointTriangleDistance(V(2, 2, 1), a, b, c);
+  EXPECT_NEAR(r.distance, std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(r.weights[0], 0.0, 1e-15);
+  EXPECT_NEAR(r.weights[1], 0.5, 1e-15);
+  // Beyond the vertex a: the vertex.
+  r = PointTriangleDistance(V(-1, -2, 2), a, b, c);
+  EXPECT_NEAR(r.distance, 3.0, 1e-15);
+  EXPECT_NEAR(r.weights[0], 1.0, 1e-15);
+  // In the plane, inside: zero, no gradient.
+  r = PointTriangleDistance(V(0.2, 0.3, 0), a, b, c);
+  EXPECT_EQ(r.distance, 0.0);
+  EXPECT_EQ(r.grad_p.norm(), 0.0);
+  // Degenerate (collinear) triangle: its longest edge.
+  r = PointTriangleDistance(V(1, 1, 0), a, b, V(1, 0, 0));
+  EXPECT_NEAR(r.distance, 1.0, 1e-15);
+}
+
+TEST(PointTriangle, MatchesSamplingAndFiniteDifferences) {
+  std::mt19937 rng(7);
+  const int n = 200;
+  for (int trial = 0; trial < 200; ++trial) {
+    const V a = RandomPoint(&rng), b = RandomPoint(&rng), c = RandomPoint(&rng);
+    const V p = 1.5 * RandomPoint(&rng);
+    const PointTriangleDistanceResult r = PointTriangleDistance(p, a, b, c);
+    const double sampled = SampledPointTriangle(p, a, b, c, n);
+    // Exact <= every sample; the grid is within one cell diagonal of every
+    // point of the triangle.
+    const double cell = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()}) / n;
+    EXPECT_LE(r.distance, sampled + 1e-14) << trial;
+    EXPECT_GE(r.distance, sampled - 2 * cell) << trial;
+    EXPECT_NEAR(r.weights.sum(), 1.0, 1e-14);
+    EXPECT_GE(r.weights.minCoeff(), 0.0);
+    EXPECT_NEAR((r.weights[0] * a + r.weights[1] * b + r.weights[2] * c - p).norm(), r.distance,
+                1e-14);
+    // Gradients against central differences of the exact distance.
+    const double h = 1e-7;
+    const V* grads[4] = {&r.grad_p, &r.grad_a, &r.grad_b, &r.grad_c};
+    for (int point = 0; point < 4; ++point) {
+      for (int k = 0; k < 3; ++k) {
+        V q[4] = {p, a, b, c}, m[4] = {p, a, b, c};
+        q[point][k] += h;
+        m[point][k] -= h;
+        const double fd = (PointTriangleDistance(q[0], q[1], q[2], q[3]).distance -
+                           PointTriangleDistance(m[0], m[1], m[2], m[3]).distance) /
+                          (2 * h);
+        EXPECT_NEAR((*grads[point])[k], fd, 1e-6) << trial << " " << point << " " << k;
+      }
+    }
+  }
+}
+
+TEST(SegmentSegment, KnownConfigurations) {
+  // Skew, crossing over each other: 0.5 apart at the middles.
+  SegmentSegmentDistanceResult r =
+      SegmentSegmentDistance(V(-1, 0, 0), V(1, 0, 0), V(0, -1, 0.5), V(0, 1, 0.5));
+  EXPECT_NEAR(r.distance, 0.5, 1e-15);
+  EXPECT_NEAR(r.s, 0.5, 1e-15);
+  EXPECT_NEAR(r.t, 0.5, 1e-15);
+  EXPECT_NEAR(r.grad_a0[2], -0.5, 1e-15);
+  EXPECT_NEAR(r.grad_b1[2], 0.5, 1e-15);
+  // Parallel, overlapping: the separation, at an end point of the overlap.
+  r = SegmentSegmentDistance(V(0, 0, 0), V(2, 0, 0), V(1, 0.3, 0), V(3, 0.3, 0));
+  EXPECT_NEAR(r.distance, 0.3, 1e-15);
+  EXPECT_NEAR((V(0, 0, 0) + r.s * V(2, 0, 0) - V(1, 0.3, 0) - r.t * V(2, 0, 0)).norm(), 0.3, 1e-15);
+  // Parallel, apart along their line: end point to end point.
+  r = SegmentSegmentDistance(V(0, 0, 0), V(1, 0, 0), V(2, 0.4, 0), V(3, 0.4, 0));
+  EXPECT_NEAR(r.distance, std::sqrt(1.0 + 0.16), 1e-15);
+  EXPECT_NEAR(r.s, 1.0, 1e-15);
+  EXPECT_NEAR(r.t, 0.0, 1e-15);
+  // Collinear and overlapping: zero.
+  r = SegmentSegmentDistance(V(0, 0, 0), V(2, 0, 0), V(1, 0, 0), V(3, 0, 0));
+  EXPECT_EQ(r.distance, 0.0);
+  // Nearly parallel (angle 1e-9): no loss of accuracy.
+  r = SegmentSegmentDistance(V(0, 0, 0), V(1, 0, 0), V(0.25, 0.2, 0), V(0.75, 0.2, 1e-9));
+  EXPECT_NEAR(r.distance, 0.2, 1e-12);
+  // An end point against the other's interior (T shape).
+  r = SegmentSegmentDistance(V(0, 0, 0), V(0, 1, 0), V(-1, -0.5, 0), V(1, -0.5, 0));
+  EXPECT_NEAR(r.distance, 0.5, 1e-15);
+  EXPECT_NEAR(r.s, 0.0, 1e-15);
+  EXPECT_NEAR(r.t, 0.5, 1e-15);
+}
+
+TEST(SegmentSegment, MatchesSamplingAndFiniteDifferences) {
+  std::mt19937 rng(11);
+  const int n = 400;
+  for (int trial = 0; trial < 200; ++trial) {
+    const V a0 = RandomPoint(&rng), a1 = RandomPoint(&rng);
+    V b0 = RandomPoint(&rng), b1 = RandomPoint(&rng);
+    if (trial % 4 == 0) b1 = b0 + 0.7 * (a1 - a0);  // parallel
+    const SegmentSegmentDistanceResult r = SegmentSegmentDistance(a0, a1, b0, b1);
+    const double sampled = SampledSegmentSegment(a0, a1, b0, b1, n);
+    const double cell = ((a1 - a0).norm() + (b1 - b0).norm()) / n;
+    EXPECT_LE(r.distance, sampled + 1e-14) << trial;
+    EXPECT_GE(r.distance, sampled - cell) << trial;
+    EXPECT_NEAR((a0 + r.s * (a1 - a0) - b0 - r.t * (b1 - b0)).norm(), r.distance, 1e-14);
+    if (trial % 4 == 0) continue;  // parallel: the closest points are not unique
+    const double h = 1e-7;
+    const V* grads[4] = {&r.grad_a0, &r.grad_a1, &r.grad_b0, &r.grad_b1};
+    for (int point = 0; point < 4; ++point) {
+      for (int k = 0; k < 3; ++k) {
+        V q[4] = {a0, a1, b0, b1}, m[4] = {a0, a1, b0, b1};
+        q[point][k] += h;
+        m[point][k] -= h;
+        const double fd = (SegmentSegmentDistance(q[0], q[1], q[2], q[3]).distance -
+                           SegmentSegmentDistance(m[0], m[1], m[2], m[3]).distance) /
+                          (2 * h);
+        EXPECT_NEAR((*grads[point])[k], fd, 1e-6) << trial << " " << point << " " << k;
+      }
+    }
+  }
+  // Parallel: the distance's gradient along the common normal is still exact.
+  const SegmentSegmentDistanceResult r =
+      SegmentSegmentDistance(V(0, 0, 0), V(2, 0, 0), V(1, 0.3, 0), V(3, 0.3, 0));
+  EXPECT_NEAR((r.grad_a0 + r.grad_a1)[1], -1.0, 1e-15);
+  EXPECT_NEAR((r.grad_b0 + r.grad_b1)[1], 1.0, 1e-15);
+}
+
+TEST(PointTriangle, SegmentIntersection) {
+  const V a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_TRUE(SegmentIntersectsTriangle(V(0.2, 0.2, -1), V(0.2, 0.2, 1), a, b, c));
+  EXPECT_FALSE(SegmentIntersectsTriangle(V(0.8, 0.8, -1), V(0.8, 0.8, 1), a, b, c));
+  EXPECT_FALSE(SegmentIntersectsTriangle(V(0.2, 0.2, 0.1), V(0.2, 0.2, 1), a, b, c));
+  // In the plane: crossing an edge, inside, beside.
+  EXPECT_TRUE(SegmentIntersectsTriangle(V(-1, 0.5, 0), V(0.2, 0.5, 0), a, b, c));
+  EXPECT_TRUE(SegmentIntersectsTriangle(V(0.1, 0.1, 0), V(0.2, 0.1, 0), a, b, c));
+  EXPECT_FALSE(SegmentIntersectsTriangle(V(-1, 0.5, 0), V(-0.2, 0.5, 0), a, b, c));
+}
+
+Obstacle Sphere3(double radius) {
+  Obstacle o;
+  o.type = ObstacleType::kSphere;
+  o.dimension = 3;
+  o.radius = radius;
+  return o;
+}
+
+Obstacle Box3() {
+  Obstacle o;
+  o.type = ObstacleType::kBox;
+  o.dimension = 3;
+  o.lower = V(-0.5, -0.4, -0.3);
+  o.upper = V(0.5, 0.0, 0.3);
+  return o;
+}
+
+TEST(Obstacle, FaceFeaturesAndBoxEdges) {
+  EXPECT_EQ(Sphere3(1).NumFaceFeatures(), 1);
+  EXPECT_EQ(Sphere3(1).NumBoxEdges(), 0);
+  EXPECT_EQ(Box3().NumFaceFeatures(), 8);
+  EXPECT_EQ(Box3().NumBoxEdges(), 12);
+  EXPECT_EQ(Box3().NumEdgeFeatures(), 0);
+  Obstacle box2 = Box3();
+  box2.dimension = 2;
+  EXPECT_EQ(box2.NumFaceFeatures(), 0);
+  EXPECT_EQ(box2.NumBoxEdges(), 0);
+  EXPECT_EQ(box2.NumEdgeFeatures(), 4);
+  // Every corner once; every box edge joins two corners differing in one axis.
+  const Obstacle box = Box3();
+  std::vector<V> corners;
+  for (int k = 0; k < 8; ++k) corners.push_back(box.FaceFeature(k, 0.0));
+  for (int i = 0; i < 8; ++i) {
+    for (int j = i + 1; j < 8; ++j) EXPECT_GT((corners[i] - corners[j]).norm(), 0.1);
+  }
+  int found[8] = {};
+  for (int e = 0; e < 12; ++e) {
+    V p, q;
+    box.BoxEdge(e, 0.0, &p, &q);
+    int differing = 0;
+    for (int k = 0; k < 3; ++k) differing += p[k] != q[k];
+    EXPECT_EQ(differing, 1);
+    for (int k = 0; k < 8; ++k)
+      found[k] += (corners[k] - p).norm() == 0 || (corners[k] - q).norm() == 0;
+  }
+  for (int k = 0; k < 8; ++k) EXPECT_EQ(found[k], 3);  // three edges per corner
+}
+
+// Smallest gap over the path [0, s] of a sampled motion.
+template <class Gap>
+double SampledMinimum(const Gap& gap, double s, int n = 2000) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= n; ++i) best = std::min(best, gap(s * i / n));
+  return best;
+}
+
+TEST(FaceCollision, TriangleIsStoppedBeforeASmallSphere) {
+  const Obstacle sphere = Sphere3(0.01);
+  const double margin = 1e-12;
+  // A large triangle falling flat through the sphere: its vertices pass far
+  // outside, only the interior meets the sphere.
+  const V v0[3] = {V(-1, 0.5, -1), V(1, 0.5, -1), V(0, 0.5, 1)};
+  V v1[3];
+  for (int k = 0; k < 3; ++k) v1[k] = v0[k] - V(0, 1, 0);
+  auto gap = [&](double s) {
+    return PointTriangleDistance(V::Zero(), v0[0] + s * (v1[0] - v0[0]),
+                                 v0[1] + s * (v1[1] - v0[1]), v0[2] + s * (v1[2] - v0[2]))
+               .distance -
+           0.01;
+  };
+  const double s = sphere.FaceTimeOfImpact(0, v0, v1, 0.0, 0.0, margin);
+  ASSERT_LE(s, 1.0);
+  // Head-on: one advance to the goal 0.1 d(0).
+  const double d0 = 0.49, goal = 0.1 * d0;
+  EXPECT_NEAR(gap(s), goal, 1e-12);
+  EXPECT_GE(SampledMinimum(gap, s), goal - 1e-12);
+  // The same triangle moving sideways above the sphere: never within the goal.
+  for (int k = 0; k < 3; ++k) v1[k] = v0[k] + V(3, -0.3, 0);
+  EXPECT_EQ(sphere.FaceTimeOfImpact(0, v0, v1, 0.0, 0.0, margin), Obstacle::kNoImpact);
+  // Oblique through the sphere, the sphere moving too (relative motion counts).
+  Obstacle moving = sphere;
+  moving.velocity = V(0, 2, 0);
+  for (int k = 0; k < 3; ++k) v1[k] = v0[k] + V(0.3, -0.2, 0.1);
+  auto moving_gap = [&](double s) {
+    V y[3];
+    for (int k = 0; k < 3; ++k) y[k] = v0[k] + s * (v1[k] - v0[k]) - moving.velocity * (0.5 * s);
+    return PointTriangleDistance(V::Zero(), y[0], y[1], y[2]).distance - 0.01;
+  };
+  const double sm = moving.FaceTimeOfImpact(0, v0, v1, 0.0, 0.5, margin);
+  ASSERT_LE(sm, 1.0);
+  const double goal_m = 0.1 * moving_gap(0.0);
+  EXPECT_GE(SampledMinimum(moving_gap, sm), goal_m * (1 - 1e-9));
+  EXPECT_LE(moving_gap(sm), goal_m + 0.011 * (moving_gap(0.0) - goal_m));
+  EXPECT_LT(SampledMinimum(moving_gap, 1.0), 0.0);  // the full path would penetrate
+  // Starting within the margin: 0.
+  const V touching[3] = {V(-1, 0.01, -1), V(1, 0.01, -1), V(0, 0.01, 1)};
+  EXPECT_EQ(sphere.FaceTimeOfImpact(0, touching, v1, 0.0, 0.0, 1e-9), 0.0);
+}
+
+TEST(FaceCollision, TriangleIsStoppedBeforeABoxCorner) {
+  const Obstacle box = Box3();
+  const V corner = box.FaceFeature(7, 0.0);  // (0.5, 0, 0.3)
+  // A triangle tilted over the corner, all vertices outside the box, sliding
+  // down and across it: the corner would pierce its interior.
+  const V v0[3] = {corner + V(-0.3, 0.2, -0.3), corner + V(0.4, 0.25, -0.2),
+                   corner + V(0.0, 0.3, 0.4)};
+  V v1[3];
+  for (int k = 0; k < 3; ++k) v1[k] = v0[k] + V(0.05, -0.6, 0.02);
+  auto gap = [&](double s) {
+    return PointTriangleDistance(corner, v0[0] + s * (v1[0] - v0[0]), v0[1] + s * (v1[1] - v0[1]),
+                                 v0[2] + s * (v1[2] - v0[2]))
+        .distance;
+  };
+  ASSERT_LT(SampledMinimum(gap, 1.0), 1e-3);  // the full path reaches the corner
+  const double s = box.FaceTimeOfImpact(7, v0, v1, 0.0, 0.0, 1e-12);
+  ASSERT_LE(s, 1.0);
+  const double goal = 0.1 * gap(0.0);
+  EXPECT_GE(SampledMinimum(gap, s), goal * (1 - 1e-9));
+  EXPECT_LE(gap(s), goal + 0.011 * (gap(0.0) - goal));
+  // Every other corner is far: no impact.
+  for (int f = 0; f < 7; ++f) {
+    if (f == 3 || f == 5 || f == 6) continue;  // share the top face's edges
+    EXPECT_EQ(box.FaceTimeOfImpact(f, v0, v1, 0.0, 0.0, 1e-12), Obstacle::kNoImpact) << f;
+  }
+}
+
+TEST(BoxEdgeCollision, SegmentCrossingABoxEdgeIsStopped) {
+  const Obstacle box = Box3();
+  // Box edge 1 runs along x at y = upper (0), z = lower (-0.3) (bit 0: next
+  // axis y upper; bit 1 clear: the axis after, z, lower).
+  V p, q;
+  box.BoxEdge(1, 0.0, &p, &q);
+  ASSERT_EQ(p, V(-0.5, 0.0, -0.3));
+  ASSERT_EQ(q, V(0.5, 0.0, -0.3));
+  // A segment across the edge (along z), both ends outside the box over the
+  // whole path: it slides down over the edge's side, crossing it.
+  const V a0(0.1, 0.2, -0.6), b0(0.1, 0.2, -0.35), a1(0.1, -0.2, -0.6), b1(0.1, -0.2, -0.35);
+  auto gap = [&](double s) {
+    return SegmentSegmentDistance(a0 + s * (a1 - a0), b0 + s * (b1 - b0), p, q).distance;
+  };
+  // Both end points stay outside the box along the path (z < -0.3).
+  EXPECT_LT(SampledMinimum(gap, 1.0), 0.06);
+  const V a_mid(0.1, 0.0, -0.6), b_mid(0.1, 0.0, -0.25);  // crossing: distance 0
+  EXPECT_EQ(SegmentSegmentDistance(a_mid, b_mid, p, q).distance, 0.0);
+  const V b1x(0.1, -0.2, -0.25), b0x(0.1, 0.2, -0.25);
+  auto crossing_gap = [&](double s) {
+    return SegmentSegmentDistance(a0 + s * (a1 - a0), b0x + s * (b1x - b0x), p, q).distance;
+  };
+  ASSERT_EQ(crossing_gap(0.5), 0.0);
+  const double s = box.BoxEdgeTimeOfImpact(1, a0, a1, b0x, b1x, 0.0, 0.0, 1e-12);
+  ASSERT_LE(s, 1.0);
+  const double goal = 0.1 * crossing_gap(0.0);
+  EXPECT_GE(SampledMinimum(crossing_gap, s), goal * (1 - 1e-9));
+  EXPECT_LE(crossing_gap(s), goal + 0.011 * (crossing_gap(0.0) - goal));
+  // Parallel to the edge, passing above it: no impact.
+  const V c0(-0.2, 0.3, -0.3), d0(0.2, 0.3, -0.3), c1(-0.2, 0.3, -0.1), d1(0.2, 0.3, -0.1);
+  EXPECT_EQ(box.BoxEdgeTimeOfImpact(1, c0, c1, d0, d1, 0.0, 0.0, 1e-12), Obstacle::kNoImpact);
+  // Parallel, coming down onto the edge: stopped above it.
+  const V e1(-0.2, -0.1, -0.3), f1(0.2, -0.1, -0.3);
+  const double sp = box.BoxEdgeTimeOfImpact(1, c0, e1, d0, f1, 0.0, 0.0, 1e-12);
+  EXPECT_NEAR(sp, 0.9 * 0.3 / 0.4, 1e-12);
+}
+
+void CheckJacobian(const ceres::CostFunction& cost, std::vector<std::vector<double>> x) {
+  testing::ExpectJacobianMatchesFiniteDifferences(cost, std::move(x), 1e-7, 1e-6);
+}
+
+TEST(FaceTerms, JacobiansMatchFiniteDifferencesAndFailInside) {
+  const double d_hat = 0.05, time = 0.3;
+  Obstacle sphere = Sphere3(0.2);
+  sphere.velocity = V(0.1, -0.2, 0.3);
+  const V centre = sphere.velocity * time;
+  // A triangle 0.03 above the sphere's top, its closest point inside.
+  const V a = centre + V(-0.1, 0.23, -0.1), b = centre + V(0.12, 0.235, -0.05),
+          c = centre + V(0.0, 0.228, 0.15);
+  const Eigen::Vector3d w = sphere.FaceDistance(0, a, b, c, time, nullptr, nullptr) > 0
+                                ? PointTriangleDistance(centre, a, b, c).weights
+                                : V(1, 0, 0);
+  FaceObstacleGap gap(&sphere, 0, &time, d_hat, 0.0, &w);
+  CheckJacobian(gap, {{a[0], a[1], a[2]}, {b[0], b[1], b[2]}, {c[0], c[1], c[2]}});
+  double residual = 0.0;
+  const double* x[3] = {a.data(), b.data(), c.data()};
+  ASSERT_TRUE(gap.Evaluate(x, &residual, nullptr));
+  EXPECT_NEAR(residual, d_hat - sphere.FaceDistance(0, a, b, c, time), 1e-14);
+  // A lagged point elsewhere on the face: a larger gap, still a valid term.
+  const V lagged(0.6, 0.2, 0.2);
+  FaceObstacleGap lagged_gap(&sphere, 0, &time, d_hat, 0.0, &lagged);
+  CheckJacobian(lagged_gap, {{a[0], a[1], a[2]}, {b[0], b[1], b[2]}, {c[0], c[1], c[2]}});
+  double lagged_residual = 0.0;
+  ASSERT_TRUE(lagged_gap.Evaluate(x, &lagged_residual, nullptr));
+  EXPECT_LT(lagged_residual, residual);
+  // The sphere bulging through the interior (all vertices outside): fails.
+  const V a2 = centre + V(-0.5, 0.1, -0.5), b2 = centre + V(0.5, 0.1, -0.5),
+          c2 = centre + V(0.0, 0.1, 0.5);
+  const double* y[3] = {a2.data(), b2.data(), c2.data()};
+  EXPECT_FALSE(gap.Evaluate(y, &residual, nullptr));
+
+  // Box corner 7 (0.5, 0, 0.3) against a face, and a box edge against a segment.
+  const Obstacle box = Box3();
+  const V corner = box.FaceFeature(7, 0.0);
+  const V p = corner + V(-0.1, 0.02, -0.1), q = corner + V(0.1, 0.03, -0.05),
+          r = corner + V(0.0, 0.025, 0.1);
+  // Box features use the true distance (no lag).
+  FaceObstacleGap corner_gap(&box, 7, &time, d_hat, 0.0);
+  CheckJacobian(corner_gap, {{p[0], p[1], p[2]}, {q[0], q[1], q[2]}, {r[0], r[1], r[2]}});
+  const double* t3[3] = {p.data(), q.data(), r.data()};
+  ASSERT_TRUE(corner_gap.Evaluate(t3, &residual, nullptr));
+  EXPECT_NEAR(residual, d_hat - PointTriangleDistance(corner, p, q, r).distance, 1e-14);
+  EdgeBoxEdgeGap edge_gap(&box, 1, &time, d_hat, 0.0);
+  const V ea(0.1, 0.02, -0.4), eb(0.15, 0.03, -0.2);
+  CheckJacobian(edge_gap, {{ea[0], ea[1], ea[2]}, {eb[0], eb[1], eb[2]}});
+  const double* e[2] = {ea.data(), eb.data()};
+  ASSERT_TRUE(edge_gap.Evaluate(e, &residual, nullptr));
+  EXPECT_NEAR(residual, d_hat - box.BoxEdgeDistance(1, ea, eb, time), 1e-14);
+  // Crossing the box edge (both ends outside the box): fails.
+  const V fa(0.1, 0.0, -0.4), fb(0.1, 0.0, -0.2);
+  const double* f[2] = {fa.data(), fb.data()};
+  EXPECT_FALSE(edge_gap.Evaluate(f, &residual, nullptr));
+}
+
+TEST(ContactSurface, GridFacesAreTheTrianglesOfBothDiagonals) {
+  // 3 x 3 nodes, spacing 0.5, structural + shear + bending springs.
+  Scene scene;
+  scene.dimension = 3;
+  const int n = 3;
+  const double a = 0.5;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      scene.positions.insert(scene.positions.end(), {c * a, 0.0, r * a});
+      scene.masses.push_back(1.0);
+    }
+  }
+  scene.velocities.assign(scene.positions.size(), 0.0);
+  auto id = [n](int r, int c) { return r * n + c; };
+  auto add = [&](int i, int j, double l) {
+    scene.springs.push_back(Spring{i, j, SpringModel::kHookean, 1.0, l});
+  };
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      if (c + 1 < n) add(id(r, c), id(r, c + 1), a);
+      if (r + 1 < n) add(id(r, c), id(r + 1, c), a);
+      if (c + 2 < n) add(id(r, c), id(r, c + 2), 2 * a);  // bending
+      if (r + 2 < n) add(id(r, c), id(r + 2, c), 2 * a);
+      if (r + 1 < n && c + 1 < n) {
+        add(id(r, c), id(r + 1, c + 1), a * std::sqrt(2.0));
+        add(id(r, c + 1), id(r + 1, c), a * std::sqrt(2.0));
+      }
+    }
+  }
+  const ContactSurface surface = BuildContactSurface(scene);
+  EXPECT_EQ(surface.edges.size(), 12u + 8u);  // structural + shear, no bending
+  ASSERT_EQ(surface.faces.size(), 16u);       // four per quad
+  ASSERT_EQ(surface.face_weights.size(), 16u);
+  for (size_t f = 0; f < surface.faces.size(); ++f) {
+    const auto& t = surface.faces[f];
+    EXPECT_LT(t[0], t[1]);
+    EXPECT_LT(t[1], t[2]);
+    EXPECT_NEAR(surface.face_weights[f], a * a / 4, 1e-15);
+  }
+  // Every interior point of a quad (off the diagonals) lies in exactly two
+  // faces, e.g. (0.2, 0, 0.1) in the first quad.
+  int covering = 0;
+  for (const auto& t : surface.faces) {
+    const V p(0.2, 0.0, 0.1);
+    covering +=
+        PointTriangleDistance(p, V(scene.positions[3 * t[0]], 0, scene.positions[3 * t[0] + 2]),
+                              V(scene.positions[3 * t[1]], 0, scene.positions[3 * t[1] + 2]),
+                              V(scene.positions[3 * t[2]], 0, scene.positions[3 * t[2] + 2]))
+            .distance < 1e-15;
+  }
+  EXPECT_EQ(covering, 2);
+}
+
+}  // namespace
+}  // namespace ipstep
