@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "contact/point_triangle.h"
+#include "contact/segment_parameter.h"
 #include "contact/segment_segment.h"
 
 namespace ipstep {
@@ -146,11 +147,9 @@ double Obstacle::TimeOfImpact(const Eigen::Vector3d& a, const Eigen::Vector3d& b
 
 double PointSegmentDistance(const Eigen::Vector3d& c, const Eigen::Vector3d& a,
                             const Eigen::Vector3d& b, double* alpha) {
-  const Eigen::Vector3d e = b - a;
-  const double length2 = e.squaredNorm();
-  const double s = length2 > 0.0 ? std::clamp((c - a).dot(e) / length2, 0.0, 1.0) : 0.0;
+  const double s = ClosestSegmentParameter(c, a, b);
   if (alpha) *alpha = s;
-  return (a + s * e - c).norm();
+  return (a + s * (b - a) - c).norm();
 }
 
 int Obstacle::NumEdgeFeatures() const {

@@ -6,19 +6,9 @@
 
 #include <Eigen/Geometry>
 
+#include "contact/segment_parameter.h"
+
 namespace ipstep {
-
-namespace {
-
-// Parameter in [0, 1] of the point of [a, b] closest to p.
-double ClosestOnSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b) {
-  const Eigen::Vector3d e = b - a;
-  const double length2 = e.squaredNorm();
-  return length2 > 0.0 ? std::clamp((p - a).dot(e) / length2, 0.0, 1.0) : 0.0;
-}
-
-}  // namespace
 
 PointTriangleDistanceResult PointTriangleDistance(const Eigen::Vector3d& p,
                                                   const Eigen::Vector3d& a,
@@ -46,7 +36,7 @@ PointTriangleDistanceResult PointTriangleDistance(const Eigen::Vector3d& p,
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
       const int i = k, j = (k + 1) % 3;
-      const double s = ClosestOnSegment(p, *corners[i], *corners[j]);
+      const double s = ClosestSegmentParameter(p, *corners[i], *corners[j]);
       const double d2 = (*corners[i] + s * (*corners[j] - *corners[i]) - p).squaredNorm();
       if (d2 < best) {
         best = d2;

@@ -3,19 +3,9 @@
 #include <algorithm>
 #include <limits>
 
+#include "contact/segment_parameter.h"
+
 namespace ipstep {
-
-namespace {
-
-// Parameter in [0, 1] of the point of [a, b] closest to p.
-double ClosestOnSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b) {
-  const Eigen::Vector3d e = b - a;
-  const double length2 = e.squaredNorm();
-  return length2 > 0.0 ? std::clamp((p - a).dot(e) / length2, 0.0, 1.0) : 0.0;
-}
-
-}  // namespace
 
 SegmentSegmentDistanceResult SegmentSegmentDistance(const Eigen::Vector3d& a0,
                                                     const Eigen::Vector3d& a1,
@@ -50,10 +40,10 @@ SegmentSegmentDistanceResult SegmentSegmentDistance(const Eigen::Vector3d& a0,
         r.t = t;
       }
     };
-    consider(0.0, ClosestOnSegment(a0, b0, b1));
-    consider(1.0, ClosestOnSegment(a1, b0, b1));
-    consider(ClosestOnSegment(b0, a0, a1), 0.0);
-    consider(ClosestOnSegment(b1, a0, a1), 1.0);
+    consider(0.0, ClosestSegmentParameter(a0, b0, b1));
+    consider(1.0, ClosestSegmentParameter(a1, b0, b1));
+    consider(ClosestSegmentParameter(b0, a0, a1), 0.0);
+    consider(ClosestSegmentParameter(b1, a0, a1), 1.0);
   }
   const Eigen::Vector3d y = a0 + r.s * u - b0 - r.t * v;
   r.distance = y.norm();
