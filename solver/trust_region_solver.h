@@ -31,7 +31,9 @@
 // point is found, the callback ends the Ceres solve and the solver restarts
 // Ceres from it with a fresh trust region (iterations and evaluations add up
 // over restarts; the rejected iteration is the one that moved). Otherwise
-// Ceres goes on shrinking its radius. Not for quasi-static steps (no inertia):
+// Ceres goes on shrinking its radius, as it does after 20 restarts in a row
+// whose first step raised the energy again (poor Gauss-Newton directions).
+// Not for quasi-static steps (no inertia):
 // their Gauss-Newton model can be nearly singular (a falling cloth draped over
 // a sphere: steps of kilometres, each refused, each cut to a tiny advance;
 // cloth_sphere's first quasi-static step failed after 330 iterations instead
@@ -103,6 +105,10 @@ class TrustRegionSolver : public StepSolver {
   Eigen::VectorXd restart_point_;  // where Ceres restarts after backtracking
   Eigen::VectorXd trial_;
   int backtrack_evaluations_ = 0;
+  // Backtracks to a fraction < 1 of a step that raised the energy since
+  // Ceres's last successful step; at kMaxShortBacktracks they stop.
+  int short_backtracks_ = 0;
+  static constexpr int kMaxShortBacktracks = 20;
   FilterCallback filter_callback_{this};
   BacktrackCallback backtrack_callback_{this};
   std::unique_ptr<StoppingCallback> callback_;
