@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/input_error.h"
+#include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
 
@@ -22,14 +23,8 @@ double Since(Clock::time_point start) {
 }
 
 double ParseNumber(const std::string& spec, const std::string& key, const std::string& value) {
-  size_t used = 0;
   double number = 0.0;
-  try {
-    number = std::stod(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != value.size() || !std::isfinite(number)) {
+  if (!ParseFiniteNumber(value, &number)) {
     throw InputError("optimizer spec", spec, key + ": not a number: '" + value + "'");
   }
   return number;

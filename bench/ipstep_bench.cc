@@ -27,6 +27,7 @@
 #include "apps/command_line.h"
 #include "bench/bench_runner.h"
 #include "core/input_error.h"
+#include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
 
@@ -72,14 +73,8 @@ namespace {
 std::vector<double> NumberList(const std::string& flag, const std::string& text) {
   std::vector<double> numbers;
   for (const std::string& item : SplitList(text)) {
-    size_t used = 0;
     double value = 0.0;
-    try {
-      value = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !std::isfinite(value) || value <= 0.0) {
+    if (!ParseFiniteNumber(item, &value) || value <= 0.0) {
       throw InputError("flag", "--" + flag, "'" + item + "' is not a number > 0");
     }
     numbers.push_back(value);
