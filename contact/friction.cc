@@ -1,6 +1,5 @@
 #include "contact/friction.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace ipstep {
@@ -100,11 +99,9 @@ void OneSidedFrictionLoss::Evaluate(double q, double rho[3]) const {
   }
   rho[1] = 2.0 * scale_ * p1 * w_q;
   rho[2] = 2.0 * scale_ * (p2 * w_q * w_q + p1 * w_qq);
-  // Ceres's corrector needs rho' > 0 wherever rho'' > 0.
-  if (!(rho[1] > 0.0)) {
-    rho[1] = 0.0;
-    rho[2] = std::min(rho[2], 0.0);
-  }
+  // Where p1 underflows, rho' may be 0 with rho'' > 0, which Ceres's corrector
+  // aborts on: WeightedLoss (core/term.h), through which every loss reaches
+  // Ceres, drops rho'' there.
 }
 
 }  // namespace ipstep
