@@ -5,6 +5,24 @@
 
 namespace ipstep {
 
+namespace {
+
+// Residual max(d_hat - d, 0) and its Jacobian blocks -grad[block] (zero out of
+// reach): `blocks` blocks of `dimension` components.
+void WriteGapResidual(double d, double d_hat, const Eigen::Vector3d* grad, int blocks,
+                      int dimension, double* residuals, double** jacobians) {
+  const double u = d_hat - d;
+  const bool active = u > 0.0;
+  residuals[0] = active ? u : 0.0;
+  if (jacobians == nullptr) return;
+  for (int block = 0; block < blocks; ++block) {
+    if (jacobians[block] == nullptr) continue;
+    for (int k = 0; k < dimension; ++k) jacobians[block][k] = active ? -grad[block][k] : 0.0;
+  }
+}
+
+}  // namespace
+
 PointObstacleGap::PointObstacleGap(int dimension, const Obstacle* obstacle, const double* time,
                                    double d_hat, double min_distance)
     : dimension_(dimension),
@@ -21,12 +39,7 @@ bool PointObstacleGap::Evaluate(double const* const* x, double* residuals,
   Eigen::Vector3d gradient;
   const double d = obstacle_->Distance(ToPoint(x[0], dimension_), *time_, &gradient);
   if (!(d > min_distance_)) return false;
-  const double u = d_hat_ - d;
-  const bool active = u > 0.0;
-  residuals[0] = active ? u : 0.0;
-  if (jacobians != nullptr && jacobians[0] != nullptr) {
-    for (int k = 0; k < dimension_; ++k) jacobians[0][k] = active ? -gradient[k] : 0.0;
-  }
+  WriteGapResidual(d, d_hat_, &gradient, 1, dimension_, residuals, jacobians);
   return true;
 }
 
@@ -53,35 +66,9 @@ bool EdgeObstacleGap::Evaluate(double const* const* x, double* residuals,
   if (alpha_ != nullptr) {
     d = obstacle_->EdgePointDistance(feature_, a, b, *alpha_, *time_, &grad[0], &grad[1]);
   }
-  const double u = d_hat_ - d;
-  const bool active = u > 0.0;
-  residuals[0] = active ? u : 0.0;
-  if (jacobians != nullptr) {
-    for (int block = 0; block < 2; ++block) {
-      if (jacobians[block] == nullptr) continue;
-      for (int k = 0; k < dimension_; ++k) jacobians[block][k] = active ? -grad[block][k] : 0.0;
-    }
-  }
+  WriteGapResidual(d, d_hat_, grad, 2, dimension_, residuals, jacobians);
   return true;
 }
-
-namespace {
-
-// Residual max(d_hat - d, 0) and its Jacobian blocks -grad[block] (zero out of
-// reach), `blocks` blocks of 3 components.
-void WriteGapResidual(double d, double d_hat, const Eigen::Vector3d* grad, int blocks,
-                      double* residuals, double** jacobians) {
-  const double u = d_hat - d;
-  const bool active = u > 0.0;
-  residuals[0] = active ? u : 0.0;
-  if (jacobians == nullptr) return;
-  for (int block = 0; block < blocks; ++block) {
-    if (jacobians[block] == nullptr) continue;
-    for (int k = 0; k < 3; ++k) jacobians[block][k] = active ? -grad[block][k] : 0.0;
-  }
-}
-
-}  // namespace
 
 FaceObstacleGap::FaceObstacleGap(const Obstacle* obstacle, int feature, const double* time,
                                  double d_hat, double min_distance, const Eigen::Vector3d* weights)
@@ -104,7 +91,7 @@ bool FaceObstacleGap::Evaluate(double const* const* x, double* residuals,
   if (weights_ != nullptr) {
     d = obstacle_->FacePointDistance(feature_, a, b, c, *weights_, *time_, grad);
   }
-  WriteGapResidual(d, d_hat_, grad, 3, residuals, jacobians);
+  WriteGapResidual(d, d_hat_, grad, 3, 3, residuals, jacobians);
   return true;
 }
 
@@ -124,7 +111,7 @@ bool EdgeBoxEdgeGap::Evaluate(double const* const* x, double* residuals, double*
   Eigen::Vector3d grad[2];
   const double d = obstacle_->BoxEdgeDistance(box_edge_, a, b, *time_, &grad[0], &grad[1]);
   if (!(d > min_distance_)) return false;
-  WriteGapResidual(d, d_hat_, grad, 2, residuals, jacobians);
+  WriteGapResidual(d, d_hat_, grad, 2, 3, residuals, jacobians);
   return true;
 }
 
@@ -138,16 +125,10 @@ bool PointEdgeGap::Evaluate(double const* const* x, double* residuals, double** 
   const Eigen::Vector2d p(x[0][0], x[0][1]), a(x[1][0], x[1][1]), b(x[2][0], x[2][1]);
   const PointEdgeDistanceResult r = PointEdgeDistance(p, a, b);
   if (!(r.distance > min_distance_)) return false;
-  const double u = d_hat_ - r.distance;
-  const bool active = u > 0.0;
-  residuals[0] = active ? u : 0.0;
-  if (jacobians != nullptr) {
-    const Eigen::Vector2d* grads[3] = {&r.grad_p, &r.grad_a, &r.grad_b};
-    for (int block = 0; block < 3; ++block) {
-      if (jacobians[block] == nullptr) continue;
-      for (int k = 0; k < 2; ++k) jacobians[block][k] = active ? -(*grads[block])[k] : 0.0;
-    }
-  }
+  const Eigen::Vector3d grad[3] = {{r.grad_p[0], r.grad_p[1], 0.0},
+                                   {r.grad_a[0], r.grad_a[1], 0.0},
+                                   {r.grad_b[0], r.grad_b[1], 0.0}};
+  WriteGapResidual(r.distance, d_hat_, grad, 3, 2, residuals, jacobians);
   return true;
 }
 
