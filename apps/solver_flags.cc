@@ -11,24 +11,29 @@ DEFINE_string(scene, "oscillator",
               "scene file");
 DEFINE_string(integrator, "backward_euler",
               "backward_euler | newmark | quasi_static | symplectic_euler");
-DEFINE_string(optimizer, "newton", "newton | dogleg | lbfgs | bfgs | ncg | gradient_descent");
+DEFINE_string(optimizer, "newton",
+              "newton | dogleg | gauss_newton | lbfgs | bfgs | ncg | gradient_descent | "
+              "projected_newton (Eigen, not Ceres)");
 DEFINE_double(dt, 0.0, "Time step [s]; 0 uses the scene's time_step");
 DEFINE_int32(steps, -1, "Number of steps; -1 uses the scene's steps");
 DEFINE_double(tolerance, 1e-5,
               "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step");
 DEFINE_int32(max_iterations, 0,
-             "Optimizer iteration limit per step; 0: newton/dogleg 100, lbfgs/bfgs 5000, ncg "
-             "20000, gradient_descent 50000");
+             "Optimizer iteration limit per step; 0: newton/dogleg/gauss_newton/projected_newton "
+             "100, lbfgs/bfgs 5000, ncg 20000, gradient_descent 50000");
 DEFINE_double(time_limit, 0.0, "Wall-time limit per step [s]; 0: none");
-DEFINE_int32(num_threads, 1, "Ceres threads (trust-region optimizers)");
+DEFINE_int32(num_threads, 1, "Ceres threads (newton, dogleg, gauss_newton)");
 DEFINE_string(linear_solver, "",
-              "newton/dogleg: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
-DEFINE_string(sparse_library, "",
-              "newton/dogleg: SUITE_SPARSE | CX_SPARSE | EIGEN_SPARSE (default CX_SPARSE)");
+              "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
+DEFINE_string(
+    sparse_library, "",
+    "newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | EIGEN_SPARSE (default CX_SPARSE)");
 DEFINE_double(trust_region_radius, 0.0,
-              "newton/dogleg: initial trust-region radius; 0: newton 1e16, dogleg 1e4");
+              "newton/dogleg/gauss_newton: initial trust-region radius; 0: newton and gauss_newton "
+              "1e16, dogleg 1e4");
 DEFINE_bool(backtrack_rejected_steps, true,
-            "newton/dogleg: when Ceres rejects a trial step (refused by contact, or the energy "
+            "newton/dogleg/gauss_newton: when Ceres rejects a trial step (refused by contact, or "
+            "the energy "
             "rose), backtrack along it and restart Ceres from there (false: Ceres only shrinks "
             "its trust region)");
 DEFINE_string(line_search, "", "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
@@ -47,14 +52,15 @@ DEFINE_int32(grid_size, 0, "Override the node count per side of a scene's grid; 
 namespace ipstep {
 namespace {
 
-void RequireOptimizerKind(const char* flag, bool trust_region, Optimizer optimizer) {
-  if (!FlagIsDefault(flag) && IsTrustRegion(optimizer) != trust_region) {
-    throw InputError(
-        "flag", std::string("--") + flag,
-        std::string("applies to ") +
-            (trust_region ? "newton and dogleg" : "lbfgs, bfgs, ncg and gradient_descent") +
-            ", not to --optimizer=" + OptimizerName(optimizer));
-  }
+// A flag of one optimiser family is an error with an optimiser of another.
+void RequireOptimizerFamily(const char* flag, OptimizerFamily family, Optimizer optimizer) {
+  if (FlagIsDefault(flag) || FamilyOf(optimizer) == family) return;
+  const char* names = family == OptimizerFamily::kTrustRegion
+                          ? "newton, dogleg and gauss_newton"
+                          : "lbfgs, bfgs, ncg and gradient_descent";
+  throw InputError(
+      "flag", std::string("--") + flag,
+      std::string("applies to ") + names + ", not to --optimizer=" + OptimizerName(optimizer));
 }
 
 }  // namespace
@@ -87,11 +93,11 @@ SimulationOptions SimulationOptionsFromFlags() {
   p.precise_line_search_energy = FLAGS_precise_energy;
   for (const char* flag : {"linear_solver", "sparse_library", "trust_region_radius", "num_threads",
                            "backtrack_rejected_steps"}) {
-    RequireOptimizerKind(flag, true, p.optimizer);
+    RequireOptimizerFamily(flag, OptimizerFamily::kTrustRegion, p.optimizer);
   }
   for (const char* flag :
        {"line_search", "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates"}) {
-    RequireOptimizerKind(flag, false, p.optimizer);
+    RequireOptimizerFamily(flag, OptimizerFamily::kLineSearch, p.optimizer);
   }
   ValidateOptimizerOptions(p);
   if (!std::isfinite(FLAGS_dt) || FLAGS_dt < 0.0) {

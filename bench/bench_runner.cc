@@ -72,47 +72,45 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
   for (std::string part; std::getline(stream, part, '+');) parts.push_back(part);
   if (parts.empty() || parts[0].empty()) throw InputError("optimizer spec", text, "empty");
   const std::string& name = parts[0];
-  spec.reference = name == "projected_newton";
   spec.none = name == "none";
-  spec.newton.tolerance = tolerance;
-  spec.ceres.tolerance = tolerance;
-  if (!spec.reference && !spec.none) spec.ceres.optimizer = ParseOptimizer(name);
+  spec.options.tolerance = tolerance;
+  if (!spec.none) spec.options.optimizer = ParseOptimizer(name);
   for (size_t p = 1; p < parts.size(); ++p) {
     const size_t eq = parts[p].find('=');
     if (eq == std::string::npos) {
       throw InputError("optimizer spec", text, "'" + parts[p] + "' is not key=value");
     }
     const std::string key = parts[p].substr(0, eq), value = parts[p].substr(eq + 1);
-    if (key == "max_iterations") {
-      spec.ceres.max_iterations = ParseCount(text, key, value);
-      spec.newton.max_iterations = spec.ceres.max_iterations;
+    if (key == "max_iterations" && !spec.none) {
+      spec.options.max_iterations = ParseCount(text, key, value);
       continue;
     }
-    if (spec.reference || spec.none) {
+    if (spec.projected_newton() || spec.none) {
       throw InputError("optimizer spec", text, "unknown key '" + key + "' for " + name);
     }
     if (key == "sparse") {
-      spec.ceres.sparse_library = value;
+      spec.options.sparse_library = value;
     } else if (key == "radius") {
-      spec.ceres.initial_trust_region_radius = ParseNumber(text, key, value);
+      spec.options.initial_trust_region_radius = ParseNumber(text, key, value);
     } else if (key == "backtrack") {
       if (value != "true" && value != "false") {
         throw InputError("optimizer spec", text, "backtrack must be true or false");
       }
-      if (!IsTrustRegion(spec.ceres.optimizer)) {
-        throw InputError("optimizer spec", text, "backtrack applies to newton and dogleg only");
+      if (!IsTrustRegion(spec.options.optimizer)) {
+        throw InputError("optimizer spec", text,
+                         "backtrack applies to newton, dogleg and gauss_newton only");
       }
-      spec.ceres.backtrack_rejected_steps = value == "true";
+      spec.options.backtrack_rejected_steps = value == "true";
     } else if (key == "linear_solver") {
-      spec.ceres.linear_solver = value;
+      spec.options.linear_solver = value;
     } else if (key == "threads") {
-      spec.ceres.num_threads = ParseCount(text, key, value);
+      spec.options.num_threads = ParseCount(text, key, value);
     } else if (key == "line_search") {
-      spec.ceres.line_search = value;
+      spec.options.line_search = value;
     } else if (key == "rank") {
-      spec.ceres.lbfgs_rank = ParseCount(text, key, value);
+      spec.options.lbfgs_rank = ParseCount(text, key, value);
     } else if (key == "type") {
-      spec.ceres.nonlinear_cg = value;
+      spec.options.nonlinear_cg = value;
     } else {
       throw InputError("optimizer spec", text,
                        "unknown key '" + key +
@@ -120,13 +118,17 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
                            "max_iterations, line_search, rank, type)");
     }
   }
-  // Validates the Ceres options now (a bad spec is an input error, not a run failure).
-  if (!spec.reference && !spec.none) {
-    if (IsTrustRegion(spec.ceres.optimizer)) {
-      MakeTrustRegionOptions(spec.ceres);
-    } else {
-      MakeLineSearchOptions(spec.ceres);
-    }
+  // Validates the options now (a bad spec is an input error, not a run failure).
+  switch (spec.none ? OptimizerFamily::kEigenNewton : FamilyOf(spec.options.optimizer)) {
+    case OptimizerFamily::kTrustRegion:
+      MakeTrustRegionOptions(spec.options);
+      break;
+    case OptimizerFamily::kLineSearch:
+      MakeLineSearchOptions(spec.options);
+      break;
+    case OptimizerFamily::kEigenNewton:
+      ValidateOptimizerOptions(spec.options);
+      break;
   }
   return spec;
 }
@@ -140,7 +142,7 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
   const Scene scene = LoadScene(config.scene, load);
   SimulationOptions options;
   options.integrator.name = config.integrator;
-  options.optimizer = spec.ceres;
+  options.optimizer = spec.options;
   options.time_step = config.dt;
   options.steps = config.steps;
   std::unique_ptr<Simulation> sim;
@@ -156,14 +158,6 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
     out.status = "error: optimizer '" + spec.text + "' does not fit integrator " +
                  config.integrator + (variational ? "" : " (use none)");
     return out;
-  }
-  ProjectedNewtonSolver* reference = nullptr;
-  if (spec.reference) {
-    sim->ReplaceStepSolver([&](IncrementalPotential* potential, const State* state) {
-      auto solver = std::make_unique<ProjectedNewtonSolver>(potential, state, spec.newton);
-      reference = solver.get();
-      return solver;
-    });
   }
   out.setup_seconds = Since(setup_start);
   const State& state = sim->state();
@@ -201,7 +195,9 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
   }
   out.loop_seconds = Since(loop_start);
   out.final_x = state.x;
-  if (reference != nullptr) out.phases = reference->timings();
+  if (spec.projected_newton()) {
+    out.phases = static_cast<const ProjectedNewtonSolver&>(sim->step_solver()).timings();
+  }
   return out;
 }
 
@@ -279,7 +275,7 @@ std::string CsvRow(const RunRow& row) {
       row.wall.empty() ? std::nan("") : *std::min_element(row.wall.begin(), row.wall.end());
   const int steps = std::max(1, t.steps_done);
   const bool ran = t.steps_done > 0;
-  const bool pn = c.optimizer == "projected_newton";
+  const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
   out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
       << ',' << c.integrator << ',' << Quote(c.optimizer) << ',' << Number(c.dt) << ',' << c.steps

@@ -9,23 +9,26 @@
 
 #include <Eigen/Core>
 
-#include "bench/projected_newton_solver.h"
 #include "sim/simulation.h"
+#include "solver/projected_newton_solver.h"
 
 namespace ipstep {
 namespace bench {
 
-// "projected_newton" (the Eigen reference of bench/projected_newton_solver.h),
-// "none" (explicit integrators), or a Ceres optimiser name followed by options:
+// An optimiser name (newton, dogleg, gauss_newton, lbfgs, ..., projected_newton,
+// the Eigen reference of solver/projected_newton_solver.h) followed by options,
+// or "none" (explicit integrators):
 //   newton+sparse=SUITE_SPARSE+radius=1e8   lbfgs+rank=5   ncg+type=POLAK_RIBIERE
-// Keys: sparse, radius, linear_solver, threads, max_iterations, line_search,
-// rank, type. Throws InputError naming the spec.
+// Keys: sparse, radius, backtrack, linear_solver, threads, max_iterations,
+// line_search, rank, type (max_iterations only for projected_newton). Throws
+// InputError naming the spec.
 struct OptimizerSpec {
   std::string text;
-  bool reference = false;  // projected Newton on Eigen
-  bool none = false;       // no optimiser (explicit integrator)
-  OptimizerOptions ceres;
-  ProjectedNewtonOptions newton;
+  bool none = false;  // no optimiser (explicit integrator)
+  OptimizerOptions options;
+  bool projected_newton() const {
+    return !none && options.optimizer == Optimizer::kProjectedNewton;
+  }
 };
 OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance);
 
@@ -61,7 +64,7 @@ struct Trajectory {
   int nodes = 0;
   int free_dofs = 0;
   int dimension = 2;
-  // Projected Newton only: time per phase over the run.
+  // projected_newton only: time per phase over the run.
   ProjectedNewtonSolver::Timings phases;
 };
 

@@ -259,7 +259,7 @@ int Run() {
   }
   for (const RunConfig& config : mine) {
     OptimizerSpec spec = specs.at(config.optimizer);
-    spec.ceres.tolerance = spec.newton.tolerance = config.tolerance;
+    spec.options.tolerance = config.tolerance;
     RunRow row;
     row.config = config;
     row.shard = FLAGS_shard;

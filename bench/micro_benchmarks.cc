@@ -11,7 +11,6 @@
 #include <benchmark/benchmark.h>
 #include <ceres/autodiff_cost_function.h>
 
-#include "bench/projected_newton_solver.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
 #include "energies/inertia.h"
@@ -21,6 +20,7 @@
 #include "energies/squared_strain_spring.h"
 #include "problems/scene_loader.h"
 #include "sim/simulation.h"
+#include "solver/projected_newton_solver.h"
 
 namespace ipstep {
 namespace {
@@ -148,7 +148,7 @@ BENCHMARK(BM_EnergyGradient)->Apply(ClothArguments);
 
 void BM_ReferenceHessian(benchmark::State& bench) {
   ClothStep cloth(static_cast<int>(bench.range(0)));
-  ProjectedNewtonSolver solver(cloth.potential, &cloth.sim->state(), {});
+  ProjectedNewtonSolver solver(cloth.potential, &cloth.sim->state(), OptimizerOptions());
   for (auto _ : bench) benchmark::DoNotOptimize(solver.AssembleHessian(cloth.start));
   bench.counters["nonzeros"] = static_cast<double>(solver.hessian().nonZeros());
 }
@@ -172,7 +172,8 @@ BENCHMARK(BM_NewtonIteration_Ceres)->Apply(ClothArguments);
 
 void BM_NewtonIteration_Reference(benchmark::State& bench) {
   ClothStep cloth(static_cast<int>(bench.range(0)));
-  ProjectedNewtonOptions options;
+  OptimizerOptions options;
+  options.optimizer = Optimizer::kProjectedNewton;
   options.max_iterations = 1;
   ProjectedNewtonSolver solver(cloth.potential, &cloth.sim->state(), options);
   Eigen::VectorXd x;

@@ -37,6 +37,18 @@ void IncrementalPotential::AddTerm(Term term) {
       }
     }
   }
+  if (static_cast<int>(sizes.size()) * dimension_ > kMaxTermCoordinates) {
+    throw std::invalid_argument("term of family '" + term.family + "' has " +
+                                std::to_string(sizes.size() * dimension_) +
+                                " parameters; at most " + std::to_string(kMaxTermCoordinates) +
+                                " (nodes x dimension) are supported");
+  }
+  if (term.pair_difference && sizes.size() != 2) {
+    throw std::invalid_argument("term of family '" + term.family +
+                                "': a pair-difference term has exactly two nodes");
+  }
+  // Inertia is ½ m |x - x_tilde|^2: affine residuals by definition.
+  if (term.kind == TermKind::kInertia) term.gauss_newton_model = true;
   max_residuals_ = std::max(max_residuals_, term.cost->num_residuals());
   max_nodes_ = std::max(max_nodes_, static_cast<int>(term.nodes.size()));
   residuals_.resize(max_residuals_);

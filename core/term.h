@@ -22,11 +22,23 @@
 
 namespace ipstep {
 
+// Second derivatives of a term's residuals, contracted with coefficients c (one
+// per residual): C = sum_k c_k Hess(r_k)(x), written row-major over the term's
+// model coordinates (all its parameters, nodes x dimension; for pair-difference
+// terms the dimension components of d = x_1 - x_0). False if it cannot be
+// evaluated at x. Used by the Newton models (core/term_hessian.h).
+using ResidualCurvature =
+    std::function<bool(const double* const* x, const double* c, double* curvature)>;
+
 enum class TermKind {
   kInertia,      // 1/2 |x - x_tilde|_M^2, weight w_I
   kPotential,    // U(x), weight w_U (springs, external loads, barriers, ...)
   kDissipation,  // R(v(x)), weight w_R
 };
+
+// The largest term: nodes x dimension parameters (8 nodes in 3D). Newton
+// models work on fixed-capacity matrices of this size.
+constexpr int kMaxTermCoordinates = 24;
 
 const char* TermKindName(TermKind kind);
 double TermWeight(TermKind kind, const StepContext& context);
@@ -45,6 +57,18 @@ struct Term {
   // set for autodiff terms. Line searches compare energies whose differences near
   // convergence are far below double round-off of the energies themselves.
   std::function<bool(const double* const* x, long double* residuals)> precise_residual;
+
+  // Second-order information for the Newton models (core/term_hessian.h).
+  // Gauss-Newton (rho' J^T J + 2 rho'' (J^T r)(J^T r)^T) is this term's model:
+  // true where the residuals are affine in x, so that it is the exact Hessian
+  // (inertia always, Rayleigh damping, plane gaps), or where the term chooses
+  // it (the quasi-static gravity potential, energies/gravity_potential.h).
+  bool gauss_newton_model = false;
+  // Two nodes whose residuals depend on d = x_1 - x_0 only (springs): the
+  // Hessian is [[K, -K], [-K, K]] and the model is built over d (K).
+  bool pair_difference = false;
+  // Analytic second derivatives; empty: central differences of the Jacobian.
+  ResidualCurvature curvature;
 };
 
 // Decorator that multiplies residuals and Jacobians by sqrt(weight), the weight

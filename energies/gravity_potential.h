@@ -33,6 +33,11 @@ struct GravityPotential {
     this->offset = offset;
   }
 
+  // Its exact Hessian is zero, and a zero model cannot carry its gradient
+  // (solver/newton_model_cost.h): Newton methods keep the Gauss-Newton
+  // curvature m|g| / (2e) described above.
+  static constexpr bool kGaussNewtonModel = true;
+
   template <typename T>
   bool operator()(const T* x, T* residual) const {
     using std::sqrt;

@@ -13,6 +13,8 @@ struct InertiaResidual {
   InertiaResidual(const StepContext* context, int node, double mass)
       : context(context), node(node), sqrt_mass(std::sqrt(mass)) {}
 
+  static constexpr bool kGaussNewtonModel = true;  // affine residuals
+
   template <typename T>
   bool operator()(const T* x, T* residual) const {
     const double* x_tilde = context->x_tilde.data() + kDim * node;

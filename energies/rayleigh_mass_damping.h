@@ -14,6 +14,8 @@ struct RayleighMassDamping {
   RayleighMassDamping(const StepContext* context, int node, double alpha_mass)
       : context(context), node(node), scale(std::sqrt(alpha_mass)) {}
 
+  static constexpr bool kGaussNewtonModel = true;  // affine residuals
+
   template <typename T>
   bool operator()(const T* x, T* residual) const {
     T v[kDim];

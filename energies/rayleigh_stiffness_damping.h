@@ -15,6 +15,8 @@ struct RayleighStiffnessDamping {
   RayleighStiffnessDamping(const StepContext* context, int i, int j, double beta_k)
       : context(context), i(i), j(j), scale(std::sqrt(beta_k)) {}
 
+  static constexpr bool kGaussNewtonModel = true;  // affine residuals
+
   template <typename T>
   bool operator()(const T* xi, const T* xj, T* residual) const {
     const double* pi = context->x_start.data() + kDim * i;

@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -20,6 +21,33 @@ namespace ipstep {
 
 // Pass as kNumResiduals for terms with one residual per coordinate (kDim of them).
 constexpr int kOneResidualPerCoordinate = -1;
+
+// Optional declarations of a functor, read by AddAutoDiff (core/term.h):
+//   static constexpr bool kGaussNewtonModel = true;  residuals affine in x: J^T J
+//       is the exact Hessian (Term::gauss_newton_model);
+//   static constexpr bool kPairDifference = true;   two nodes, residuals of
+//       x_1 - x_0 only (Term::pair_difference);
+//   bool ResidualCurvature(const double* const* x, const double* c,
+//                          double* curvature) const;
+//       analytic sum_k c_k Hess(r_k) (Term::curvature); without it Newton
+//       methods take central differences of the autodiff Jacobian.
+template <class F, class = void>
+struct DeclaresGaussNewtonModel : std::false_type {};
+template <class F>
+struct DeclaresGaussNewtonModel<F, std::void_t<decltype(F::kGaussNewtonModel)>>
+    : std::bool_constant<F::kGaussNewtonModel> {};
+template <class F, class = void>
+struct DeclaresPairDifference : std::false_type {};
+template <class F>
+struct DeclaresPairDifference<F, std::void_t<decltype(F::kPairDifference)>>
+    : std::bool_constant<F::kPairDifference> {};
+template <class F, class = void>
+struct HasResidualCurvature : std::false_type {};
+template <class F>
+struct HasResidualCurvature<F, std::void_t<decltype(std::declval<const F&>().ResidualCurvature(
+                                   std::declval<const double* const*>(),
+                                   std::declval<const double*>(), std::declval<double*>()))>>
+    : std::true_type {};
 
 class TermBuilder {
  public:
@@ -76,6 +104,13 @@ class TermBuilder {
     F functor(std::forward<Args>(args)...);
     term->cost = std::make_unique<ceres::AutoDiffCostFunction<F, kResiduals, ((void)Is, kDim)...>>(
         new F(functor));
+    term->gauss_newton_model = DeclaresGaussNewtonModel<F>::value;
+    term->pair_difference = DeclaresPairDifference<F>::value;
+    if constexpr (HasResidualCurvature<F>::value) {
+      term->curvature = [functor](const double* const* x, const double* c, double* curvature) {
+        return functor.ResidualCurvature(x, c, curvature);
+      };
+    }
     term->precise_residual = [functor](const double* const* x, long double* residuals) {
       long double xl[sizeof...(Is)][kDim];
       for (size_t b = 0; b < sizeof...(Is); ++b) {

@@ -173,6 +173,11 @@ void Simulation::ReplaceStepSolver(const StepSolverFactory& factory) {
   solver_ = factory(potential_.get(), &state_);
 }
 
+const StepSolver& Simulation::step_solver() const {
+  if (!solver_) throw std::logic_error(integrator_->name() + " does not use a step solver");
+  return *solver_;
+}
+
 void Simulation::set_iteration_sink(IterationSink sink) {
   if (solver_) solver_->set_iteration_sink(std::move(sink));
 }

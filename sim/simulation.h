@@ -50,6 +50,8 @@ class Simulation {
   const State& state() const { return state_; }
   const Integrator& integrator() const { return *integrator_; }
   const IncrementalPotential& potential() const { return *potential_; }
+  // The step solver (variational integrators; throws std::logic_error otherwise).
+  const StepSolver& step_solver() const;
   double time_step() const { return time_step_; }
   int steps() const { return steps_; }
   int steps_taken() const { return steps_taken_; }

@@ -11,15 +11,22 @@ constexpr struct {
   Optimizer optimizer;
   const char* name;
 } kNames[] = {
-    {Optimizer::kNewton, "newton"}, {Optimizer::kDogleg, "dogleg"},
-    {Optimizer::kLbfgs, "lbfgs"},   {Optimizer::kBfgs, "bfgs"},
-    {Optimizer::kNcg, "ncg"},       {Optimizer::kGradientDescent, "gradient_descent"},
+    {Optimizer::kNewton, "newton"},
+    {Optimizer::kDogleg, "dogleg"},
+    {Optimizer::kGaussNewton, "gauss_newton"},
+    {Optimizer::kLbfgs, "lbfgs"},
+    {Optimizer::kBfgs, "bfgs"},
+    {Optimizer::kNcg, "ncg"},
+    {Optimizer::kGradientDescent, "gradient_descent"},
+    {Optimizer::kProjectedNewton, "projected_newton"},
 };
 
 int DefaultMaxIterations(Optimizer o) {
   switch (o) {
     case Optimizer::kNewton:
     case Optimizer::kDogleg:
+    case Optimizer::kGaussNewton:
+    case Optimizer::kProjectedNewton:
       return 100;
     case Optimizer::kLbfgs:
     case Optimizer::kBfgs:
@@ -92,7 +99,9 @@ const char* OptimizerName(Optimizer optimizer) {
   return "unknown";
 }
 
-const char* OptimizerNames() { return "newton, dogleg, lbfgs, bfgs, ncg, gradient_descent"; }
+const char* OptimizerNames() {
+  return "newton, dogleg, gauss_newton, lbfgs, bfgs, ncg, gradient_descent, projected_newton";
+}
 
 Optimizer ParseOptimizer(const std::string& name) {
   for (const auto& entry : kNames) {
@@ -102,8 +111,26 @@ Optimizer ParseOptimizer(const std::string& name) {
                    "unknown optimizer '" + name + "' (choose one of " + OptimizerNames() + ")");
 }
 
+OptimizerFamily FamilyOf(Optimizer optimizer) {
+  switch (optimizer) {
+    case Optimizer::kNewton:
+    case Optimizer::kDogleg:
+    case Optimizer::kGaussNewton:
+      return OptimizerFamily::kTrustRegion;
+    case Optimizer::kProjectedNewton:
+      return OptimizerFamily::kEigenNewton;
+    default:
+      return OptimizerFamily::kLineSearch;
+  }
+}
+
 bool IsTrustRegion(Optimizer optimizer) {
-  return optimizer == Optimizer::kNewton || optimizer == Optimizer::kDogleg;
+  return FamilyOf(optimizer) == OptimizerFamily::kTrustRegion;
+}
+
+bool UsesNewtonModel(Optimizer optimizer) {
+  return optimizer == Optimizer::kNewton || optimizer == Optimizer::kDogleg ||
+         optimizer == Optimizer::kProjectedNewton;
 }
 
 void ValidateOptimizerOptions(const OptimizerOptions& o) {
@@ -136,9 +163,9 @@ ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
   c.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   c.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
   c.num_threads = o.num_threads;
-  if (o.optimizer == Optimizer::kNewton) {
+  if (o.optimizer != Optimizer::kDogleg) {
     c.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    c.initial_trust_region_radius = 1e16;  // Gauss-Newton steps, damped only after a rejection
+    c.initial_trust_region_radius = 1e16;  // full model steps, damped only after a rejection
   } else {
     c.trust_region_strategy_type = ceres::DOGLEG;
     c.dogleg_type = ceres::TRADITIONAL_DOGLEG;
@@ -169,7 +196,7 @@ ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
 
 ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& o) {
   ValidateOptimizerOptions(o);
-  if (IsTrustRegion(o.optimizer)) {
+  if (FamilyOf(o.optimizer) != OptimizerFamily::kLineSearch) {
     throw InputError("flag", "--optimizer",
                      std::string(OptimizerName(o.optimizer)) + " is not a line-search optimizer");
   }

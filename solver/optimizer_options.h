@@ -4,17 +4,21 @@
 // (bench/, ../shared/design-notes.md).
 //
 //   name              path                      Ceres options
-//   newton            ceres::Problem            TRUST_REGION, LEVENBERG_MARQUARDT,
-//                                               SPARSE_NORMAL_CHOLESKY, CX_SPARSE,
-//                                               initial_trust_region_radius 1e16
-//   dogleg            ceres::Problem            TRUST_REGION, DOGLEG (TRADITIONAL),
+//   newton            ceres::Problem, projected TRUST_REGION, LEVENBERG_MARQUARDT,
+//                     Newton model per term     SPARSE_NORMAL_CHOLESKY, CX_SPARSE,
+//                     (solver/newton_model_cost.h)  initial_trust_region_radius 1e16
+//   dogleg            same model                TRUST_REGION, DOGLEG (TRADITIONAL),
 //                                               SPARSE_NORMAL_CHOLESKY, CX_SPARSE
+//   gauss_newton      ceres::Problem, the       as newton: Ceres's own J^T J model
+//                     residual blocks as they are
 //   lbfgs             ceres::GradientProblem    LINE_SEARCH, LBFGS rank 20, WOLFE,
 //                                               approximate eigenvalue scaling on
 //   bfgs              ceres::GradientProblem    LINE_SEARCH, BFGS, WOLFE, scaling on
 //   ncg               ceres::GradientProblem    LINE_SEARCH, NONLINEAR_CONJUGATE_GRADIENT,
 //                                               FLETCHER_REEVES, WOLFE
 //   gradient_descent  ceres::GradientProblem    LINE_SEARCH, STEEPEST_DESCENT, WOLFE
+//   projected_newton  not Ceres: Eigen sparse LDL^T and an Armijo line search
+//                     (solver/projected_newton_solver.h), the same term models
 #pragma once
 
 #include <string>
@@ -24,13 +28,31 @@
 
 namespace ipstep {
 
-enum class Optimizer { kNewton, kDogleg, kLbfgs, kBfgs, kNcg, kGradientDescent };
+enum class Optimizer {
+  kNewton,
+  kDogleg,
+  kGaussNewton,
+  kLbfgs,
+  kBfgs,
+  kNcg,
+  kGradientDescent,
+  kProjectedNewton,
+};
+
+// Which solver runs an optimiser: Ceres's trust region on a ceres::Problem,
+// Ceres's line search on a ceres::GradientProblem, or ipstep's own projected
+// Newton on Eigen.
+enum class OptimizerFamily { kTrustRegion, kLineSearch, kEigenNewton };
 
 const char* OptimizerName(Optimizer optimizer);
 const char* OptimizerNames();  // comma-separated list for messages
 // Throws InputError naming --optimizer.
 Optimizer ParseOptimizer(const std::string& name);
+OptimizerFamily FamilyOf(Optimizer optimizer);
 bool IsTrustRegion(Optimizer optimizer);
+// Optimisers that build the projected Newton model of every term (newton,
+// dogleg, projected_newton): core/term_hessian.h.
+bool UsesNewtonModel(Optimizer optimizer);
 
 struct OptimizerOptions {
   Optimizer optimizer = Optimizer::kNewton;
@@ -39,8 +61,8 @@ struct OptimizerOptions {
   double tolerance = 1e-5;
 
   // Overrides. Empty string / 0 / negative: the optimiser's default.
-  int max_iterations = 0;   // default: newton, dogleg 100; lbfgs, bfgs 5000; ncg 20000;
-                            // gradient_descent 50000
+  int max_iterations = 0;   // default: newton, dogleg, gauss_newton, projected_newton 100;
+                            // lbfgs, bfgs 5000; ncg 20000; gradient_descent 50000
   double time_limit = 0.0;  // seconds per step; default 1e9 (none)
   int num_threads = 1;
   std::string linear_solver;   // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR

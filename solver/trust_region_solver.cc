@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/stopping_rule.h"
+#include "solver/newton_model_cost.h"
 #include "solver/solve_status.h"
 
 namespace ipstep {
@@ -43,6 +44,7 @@ void TrustRegionSolver::BuildProblem() {
   weighted_losses_.clear();
   const int dim = state_->dimension;
   const StepContext& context = potential_->context();
+  const bool newton_model = UsesNewtonModel(options_.optimizer);
   std::vector<double*> blocks;
   for (const Term& term : potential_->terms()) {
     const double* weight = term.kind == TermKind::kInertia     ? &context.inertia_weight
@@ -50,6 +52,14 @@ void TrustRegionSolver::BuildProblem() {
                                                                : &context.dissipation_weight;
     blocks.clear();
     for (int node : term.nodes) blocks.push_back(positions_.data() + dim * node);
+    if (newton_model && !term.gauss_newton_model) {
+      // The projected Newton model (solver/newton_model_cost.h).
+      auto cost = std::make_unique<NewtonModelCost>(&term, dim, weight, &veto_);
+      weighted_losses_.push_back(std::make_unique<NewtonModelLoss>(cost.get()));
+      problem_->AddResidualBlock(cost.get(), weighted_losses_.back().get(), blocks);
+      weighted_costs_.push_back(std::move(cost));
+      continue;
+    }
     ceres::LossFunction* loss = nullptr;
     if (term.loss) {
       // rho_w = w rho: the weight goes into the loss, not the residual.

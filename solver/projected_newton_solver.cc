@@ -1,4 +1,4 @@
-#include "bench/projected_newton_solver.h"
+#include "solver/projected_newton_solver.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,8 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/Eigenvalues>
-
+#include "core/input_error.h"
 #include "core/stopping_rule.h"
 
 namespace ipstep {
@@ -17,27 +16,10 @@ namespace {
 // The first trial step stops at this fraction of the collision-free distance
 // (as the simulation's feasible start).
 constexpr double kStepFilterFraction = 0.9;
+constexpr double kArmijo = 1e-4;
+constexpr int kMaxBacktracks = 60;
 
 using Clock = std::chrono::steady_clock;
-
-// Clamps the negative eigenvalues of the symmetric n x n matrix h to zero, with
-// a fixed-size eigen-decomposition for the common term sizes (closed form for
-// n <= 3).
-template <int N, class Matrix>
-void ProjectFixed(Matrix* h) {
-  using Fixed = Eigen::Matrix<double, N, N>;
-  const Fixed a = h->template topLeftCorner<N, N>();
-  Eigen::SelfAdjointEigenSolver<Fixed> eigen;
-  if (N <= 3) {
-    eigen.computeDirect(a);
-  } else {
-    eigen.compute(a);
-  }
-  if (eigen.info() != Eigen::Success || eigen.eigenvalues().minCoeff() >= 0.0) return;
-  const Eigen::Matrix<double, N, 1> clamped = eigen.eigenvalues().cwiseMax(0.0);
-  h->template topLeftCorner<N, N>() =
-      eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
-}
 
 double Since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -46,14 +28,15 @@ double Since(Clock::time_point start) {
 }  // namespace
 
 ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, const State* state,
-                                             const ProjectedNewtonOptions& options)
+                                             const OptimizerOptions& options)
     : potential_(potential),
       state_(state),
-      options_(options),
       gradient_(state->num_dofs()),
       trial_(state->num_dofs()) {
-  if (!(options.tolerance > 0.0)) throw std::invalid_argument("tolerance must be > 0");
-  if (options.max_iterations < 1) throw std::invalid_argument("max_iterations must be >= 1");
+  ValidateOptimizerOptions(options);
+  tolerance_ = options.tolerance;
+  max_iterations_ = options.max_iterations > 0 ? options.max_iterations : 100;
+  time_limit_ = options.time_limit > 0.0 ? options.time_limit : 1e9;
   BuildStructure();
 }
 
@@ -72,14 +55,8 @@ void ProjectedNewtonSolver::BuildStructure() {
   };
   std::vector<Eigen::Triplet<double>> triplets;
   for (int d = 0; d < num_free_; ++d) triplets.emplace_back(d, d, 0.0);
-  int max_residuals = 1;
   for (const Term& term : potential_->terms()) {
     const int nt = dim * static_cast<int>(term.nodes.size());
-    if (nt > kMaxTermParameters || term.cost->num_residuals() > kMaxTermResiduals) {
-      throw std::invalid_argument("projected newton: term of family '" + term.family +
-                                  "' is larger than the reference solver supports");
-    }
-    max_residuals = std::max(max_residuals, term.cost->num_residuals());
     for (int a = 0; a < nt; ++a) {
       for (int b = 0; b < a; ++b) {
         const int fa = free_of(term, a), fb = free_of(term, b);
@@ -109,11 +86,7 @@ void ProjectedNewtonSolver::BuildStructure() {
       }
     }
   }
-  residuals_.resize(max_residuals);
-  jacobian_blocks_.resize(static_cast<size_t>(max_residuals) * kMaxTermParameters);
-  jacobian_pointers_.resize(kMaxTermParameters);
-  parameter_pointers_.resize(kMaxTermParameters);
-  local_x_.resize(kMaxTermParameters);
+  parameters_.resize(kMaxTermCoordinates);
   free_rhs_.resize(num_free_);
   free_step_.resize(num_free_);
   analyzed_ = false;
@@ -121,98 +94,35 @@ void ProjectedNewtonSolver::BuildStructure() {
   timings_.analyze += Since(start);
 }
 
-bool ProjectedNewtonSolver::TermHessian(const Term& term, const double* x, double weight,
-                                        const int* slots) {
+bool ProjectedNewtonSolver::AddTermHessian(const Term& term, const double* x, double weight,
+                                           const int* slots) {
   const int dim = state_->dimension;
   const int blocks = static_cast<int>(term.nodes.size());
+  for (int b = 0; b < blocks; ++b) parameters_[b] = x + dim * term.nodes[b];
+  if (!evaluator_.Evaluate(term, dim, weight, parameters_.data(), true, &model_)) return false;
+  // Gauss-Newton models are PSD as they are (rho' J^T J, rho'' part only where
+  // positive); the others are projected.
+  const TermMatrix* h = &model_.hessian;
+  if (!term.gauss_newton_model) {
+    ProjectHessian(model_, &projected_);
+    local_hessian_.noalias() =
+        projected_.vectors * projected_.values.asDiagonal() * projected_.vectors.transpose();
+    h = &local_hessian_;
+  }
+  // Pair-difference terms: the full Hessian is [[K, -K], [-K, K]].
+  const int n = static_cast<int>(h->rows());
   const int nt = dim * blocks;
-  const int m = term.cost->num_residuals();
-  for (int b = 0; b < blocks; ++b) {
-    for (int k = 0; k < dim; ++k) local_x_[b * dim + k] = x[dim * term.nodes[b] + k];
-    parameter_pointers_[b] = local_x_.data() + b * dim;
-    jacobian_pointers_[b] = jacobian_blocks_.data() + static_cast<size_t>(b) * m * dim;
-  }
-  // Row-major m x dim blocks into an m x nt Jacobian.
-  auto evaluate = [&](double* residuals, TermMatrix* jacobian) {
-    if (!term.cost->Evaluate(parameter_pointers_.data(), residuals, jacobian_pointers_.data())) {
-      return false;
-    }
-    jacobian->resize(m, nt);
-    for (int b = 0; b < blocks; ++b) {
-      for (int r = 0; r < m; ++r) {
-        for (int k = 0; k < dim; ++k)
-          (*jacobian)(r, b * dim + k) = jacobian_pointers_[b][r * dim + k];
-      }
-    }
-    return true;
-  };
-  if (!evaluate(residuals_.data(), &jacobian_)) return false;
-  const Eigen::Map<const Eigen::VectorXd> r(residuals_.data(), m);
-  const double s = r.squaredNorm();
-  double rho[3] = {s, 1.0, 0.0};
-  if (term.loss) term.loss->Evaluate(s, rho);
-  jtr_.noalias() = jacobian_.transpose() * r;
-  local_hessian_.noalias() = rho[1] * jacobian_.transpose() * jacobian_;
-  local_hessian_.noalias() += (2.0 * rho[2]) * jtr_ * jtr_.transpose();
-  // Second-order part rho' sum_k r_k Hess(r_k) by central differences of J^T r
-  // with r held fixed. Inertia residuals are linear in x.
-  if (term.kind != TermKind::kInertia && rho[1] != 0.0) {
-    bool ok = true;
-    second_order_.resize(nt, nt);
-    for (int j = 0; j < nt && ok; ++j) {
-      const double saved = local_x_[j];
-      const double step = options_.fd_relative_step * std::max(1.0, std::abs(saved));
-      local_x_[j] = saved + step;
-      const double up = local_x_[j];
-      ok = evaluate(fd_residuals_.data(), &jacobian_fd_);
-      if (ok) column_.noalias() = jacobian_fd_.transpose() * r;
-      local_x_[j] = saved - step;
-      const double down = local_x_[j];
-      ok = ok && evaluate(fd_residuals_.data(), &jacobian_fd_);
-      if (ok) second_order_.col(j) = (column_ - jacobian_fd_.transpose() * r) / (up - down);
-      local_x_[j] = saved;
-    }
-    // A term that cannot be evaluated beside x (e.g. a barrier at the edge of its
-    // domain) keeps only its Gauss-Newton part, which is PSD.
-    if (ok) {
-      local_hessian_ += (0.5 * rho[1]) * (second_order_ + second_order_.transpose());
-    } else {
-      ++fd_fallbacks_;
-    }
-  }
-  local_hessian_ *= weight;
-  if (options_.project_to_psd && term.kind != TermKind::kInertia) {
-    switch (nt) {
-      case 1:
-        local_hessian_(0, 0) = std::max(local_hessian_(0, 0), 0.0);
-        break;
-      case 2:
-        ProjectFixed<2>(&local_hessian_);
-        break;
-      case 3:
-        ProjectFixed<3>(&local_hessian_);
-        break;
-      case 4:
-        ProjectFixed<4>(&local_hessian_);
-        break;
-      case 6:
-        ProjectFixed<6>(&local_hessian_);
-        break;
-      default:
-        eigen_.compute(local_hessian_);
-        if (eigen_.info() == Eigen::Success && eigen_.eigenvalues().minCoeff() < 0.0) {
-          eigenvalues_ = eigen_.eigenvalues().cwiseMax(0.0);
-          local_hessian_.noalias() =
-              eigen_.eigenvectors() * eigenvalues_.asDiagonal() * eigen_.eigenvectors().transpose();
-        }
-        break;
-    }
-  }
   double* values = hessian_.valuePtr();
   int index = 0;
   for (int a = 0; a < nt; ++a) {
     for (int b = 0; b <= a; ++b, ++index) {
-      if (slots[index] >= 0) values[slots[index]] += local_hessian_(a, b);
+      if (slots[index] < 0) continue;
+      if (term.pair_difference) {
+        const double sign = (a < n) == (b < n) ? 1.0 : -1.0;
+        values[slots[index]] += sign * (*h)(a % n, b % n);
+      } else {
+        values[slots[index]] += (*h)(a, b);
+      }
     }
   }
   return true;
@@ -228,7 +138,7 @@ bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x) {
   for (size_t t = 0; t < terms.size() && ok; ++t) {
     const double weight = TermWeight(terms[t].kind, context);
     if (weight == 0.0) continue;
-    ok = TermHessian(terms[t], x.data(), weight, slots_.data() + slot_offset_[t]);
+    ok = AddTermHessian(terms[t], x.data(), weight, slots_.data() + slot_offset_[t]);
   }
   timings_.hessian += Since(start);
   return ok;
@@ -309,13 +219,17 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       record.residual = result.residual;
       sink_(record);
     }
-    if (result.residual <= options_.tolerance) {
+    if (result.residual <= tolerance_) {
       result.converged = true;
       result.status = "converged";
       break;
     }
-    if (iteration >= options_.max_iterations) {
-      result.status = "iteration limit (" + std::to_string(options_.max_iterations) + ")";
+    if (iteration >= max_iterations_) {
+      result.status = "iteration limit (" + std::to_string(max_iterations_) + ")";
+      break;
+    }
+    if (Since(solve_start) > time_limit_) {
+      result.status = "time limit: " + std::to_string(time_limit_) + " s";
       break;
     }
     if (!AssembleHessian(*x)) {
@@ -345,12 +259,12 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       if (t < 1.0) alpha = kStepFilterFraction * t;
     }
     bool accepted = false;
-    for (int backtrack = 0; backtrack <= options_.max_backtracks; ++backtrack, alpha *= 0.5) {
+    for (int backtrack = 0; backtrack <= kMaxBacktracks; ++backtrack, alpha *= 0.5) {
       trial_ = *x + alpha * direction;
       long double e = 0.0L;
       ++result.evaluations;
       if (potential_->EvaluatePreciseEnergy(trial_.data(), &e) &&
-          e <= e0 + static_cast<long double>(options_.armijo * alpha * slope)) {
+          e <= e0 + static_cast<long double>(kArmijo * alpha * slope)) {
         accepted = true;
         break;
       }

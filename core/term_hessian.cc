@@ -1,0 +1,166 @@
+#include "core/term_hessian.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+namespace ipstep {
+namespace {
+
+template <int N>
+void DecomposeFixed(const TermMatrix& h, ProjectedHessian* out) {
+  using Fixed = Eigen::Matrix<double, N, N>;
+  Eigen::SelfAdjointEigenSolver<Fixed> eigen;
+  if constexpr (N <= 3) {
+    eigen.computeDirect(h.template topLeftCorner<N, N>());
+  } else {
+    eigen.compute(h.template topLeftCorner<N, N>());
+  }
+  out->vectors = eigen.eigenvectors();
+  out->values = eigen.eigenvalues();
+}
+
+}  // namespace
+
+int ModelSize(const Term& term, int dimension) {
+  return term.pair_difference ? dimension : dimension * static_cast<int>(term.nodes.size());
+}
+
+bool TermModelEvaluator::EvaluateJacobian(const Term& term, int dimension, bool pair,
+                                          double* residuals, TermMatrix* jacobian) {
+  const int blocks = static_cast<int>(term.nodes.size());
+  const int m = term.cost->num_residuals();
+  for (int b = 0; b < blocks; ++b) {
+    // A pair-difference term needs dr/dx_1 = dr/dd only.
+    jacobian_pointers_[b] =
+        pair && b == 0 ? nullptr : jacobian_blocks_.data() + static_cast<size_t>(b) * m * dimension;
+  }
+  if (!term.cost->Evaluate(parameters_.data(), residuals, jacobian_pointers_.data())) return false;
+  // Row-major m x dimension blocks into the m x n model Jacobian.
+  const int first = pair ? 1 : 0;
+  jacobian->resize(m, dimension * (blocks - first));
+  for (int b = first; b < blocks; ++b) {
+    const double* block = jacobian_pointers_[b];
+    for (int r = 0; r < m; ++r) {
+      for (int k = 0; k < dimension; ++k)
+        (*jacobian)(r, (b - first) * dimension + k) = block[r * dimension + k];
+    }
+  }
+  return true;
+}
+
+bool TermModelEvaluator::Evaluate(const Term& term, int dimension, double weight,
+                                  const double* const* x, bool hessian, TermModel* model) {
+  const int blocks = static_cast<int>(term.nodes.size());
+  const int m = term.cost->num_residuals();
+  if (static_cast<int>(residuals_.size()) < m) {
+    residuals_.resize(m);
+    residuals_fd_.resize(m);
+  }
+  if (!hessian) {
+    if (!term.cost->Evaluate(x, residuals_.data(), nullptr)) return false;
+    double s = 0.0;
+    for (int r = 0; r < m; ++r) s += residuals_[r] * residuals_[r];
+    double rho[3] = {s, 1.0, 0.0};
+    if (term.loss) term.loss->Evaluate(s, rho);
+    model->energy = 0.5 * weight * rho[0];
+    return std::isfinite(model->energy);
+  }
+  // Local copies of the parameters: finite differences perturb them.
+  const int nt = dimension * blocks;
+  if (static_cast<int>(jacobian_blocks_.size()) < m * nt) jacobian_blocks_.resize(m * nt);
+  local_x_.resize(nt);
+  parameters_.resize(blocks);
+  jacobian_pointers_.resize(blocks);
+  for (int b = 0; b < blocks; ++b) {
+    std::copy(x[b], x[b] + dimension, local_x_.begin() + b * dimension);
+    parameters_[b] = local_x_.data() + b * dimension;
+  }
+  const bool pair = term.pair_difference;
+  if (!EvaluateJacobian(term, dimension, pair, residuals_.data(), &jacobian_)) return false;
+  const Eigen::Map<const Eigen::VectorXd> r(residuals_.data(), m);
+  const double s = r.squaredNorm();
+  double rho[3] = {s, 1.0, 0.0};
+  if (term.loss) term.loss->Evaluate(s, rho);
+  model->energy = 0.5 * weight * rho[0];
+  const TermVector jtr = jacobian_.transpose() * r;
+  model->gradient = (weight * rho[1]) * jtr;
+  model->hessian.noalias() = (weight * rho[1]) * jacobian_.transpose() * jacobian_;
+  // Ceres's corrector keeps the rho'' part only where it is positive (else it
+  // scales J by sqrt(rho')); a Gauss-Newton model is Ceres's model.
+  const double rho2 = term.gauss_newton_model ? std::max(rho[2], 0.0) : rho[2];
+  model->hessian.noalias() += (2.0 * weight * rho2) * jtr * jtr.transpose();
+  model->gauss_newton_scale = weight * rho[1] * jacobian_.squaredNorm();
+  model->curvature_dropped = false;
+  const int n = static_cast<int>(jacobian_.cols());
+  if (!term.gauss_newton_model && rho[1] != 0.0 && weight != 0.0) {
+    curvature_.resize(n, n);
+    bool ok = true;
+    if (term.curvature) {
+      ok = term.curvature(parameters_.data(), residuals_.data(), curvature_.data());
+      // The callback writes row-major; the matrix is symmetric up to round-off.
+    } else {
+      // Columns over the model coordinates: for a pair-difference term d moves
+      // with x_1 (x_0 fixed).
+      const int offset = pair ? dimension : 0;
+      for (int j = 0; j < n && ok; ++j) {
+        double& coordinate = local_x_[offset + j];
+        const double saved = coordinate;
+        const double step = kCurvatureStep * std::max(1.0, std::abs(saved));
+        coordinate = saved + step;
+        const double up = coordinate;
+        ok = EvaluateJacobian(term, dimension, pair, residuals_fd_.data(), &jacobian_fd_);
+        if (ok) column_.noalias() = jacobian_fd_.transpose() * r;
+        coordinate = saved - step;
+        const double down = coordinate;
+        ok = ok && EvaluateJacobian(term, dimension, pair, residuals_fd_.data(), &jacobian_fd_);
+        if (ok) curvature_.col(j) = (column_ - jacobian_fd_.transpose() * r) / (up - down);
+        coordinate = saved;
+      }
+    }
+    if (ok && curvature_.allFinite()) {
+      model->hessian += (0.5 * weight * rho[1]) * (curvature_ + curvature_.transpose());
+    } else {
+      model->curvature_dropped = true;
+    }
+  }
+  return std::isfinite(model->energy) && model->gradient.allFinite() && model->hessian.allFinite();
+}
+
+void ProjectHessian(const TermModel& model, ProjectedHessian* projected) {
+  const TermMatrix& h = model.hessian;
+  switch (h.rows()) {
+    case 1:
+      projected->vectors.setOnes(1, 1);
+      projected->values.setConstant(1, h(0, 0));
+      break;
+    case 2:
+      DecomposeFixed<2>(h, projected);
+      break;
+    case 3:
+      DecomposeFixed<3>(h, projected);
+      break;
+    case 4:
+      DecomposeFixed<4>(h, projected);
+      break;
+    case 6:
+      DecomposeFixed<6>(h, projected);
+      break;
+    case 9:
+      DecomposeFixed<9>(h, projected);
+      break;
+    default: {
+      Eigen::SelfAdjointEigenSolver<TermMatrix> eigen(h);
+      projected->vectors = eigen.eigenvectors();
+      projected->values = eigen.eigenvalues();
+      break;
+    }
+  }
+  const double scale =
+      std::max(projected->values.size() > 0 ? projected->values.cwiseAbs().maxCoeff() : 0.0,
+               model.gauss_newton_scale);
+  projected->values = projected->values.cwiseMax(kCurvatureFloor * scale);
+}
+
+}  // namespace ipstep

@@ -1,0 +1,103 @@
+// projected_newton: ipstep's own projected Newton method on Eigen, not Ceres.
+// The yardstick for what Ceres itself costs (docs/benchmarks.md), and an
+// optimiser of its own (`--optimizer=projected_newton`). A StepSolver over the
+// same IncrementalPotential terms with the same stopping rule
+// (core/stopping_rule.h).
+//
+// Per iteration: every term's projected Newton model (core/term_hessian.h:
+// exact Hessian from analytic curvature or central differences of the term's
+// Jacobian, eigenvalues floored at 1e-8 of the term's curvature scale; terms
+// with a Gauss-Newton model as Ceres builds it) is assembled into a sparse
+// matrix over the free degrees of freedom, factorised with
+// Eigen::SimplicialLDLT (AMD ordering, symbolic analysis once per term
+// structure) and the direction searched with Armijo backtracking (c = 1e-4,
+// halving) on the energy summed in extended precision. Trial points the
+// potential cannot evaluate (step filters, core/step_filter.h) are
+// backtracked from; with step filters the first trial step is capped at 0.9 of
+// MaxStepSize. A singular matrix (quasi-static, free rigid modes) gets a
+// growing multiple of the identity on its diagonal.
+//
+// It is the same model Ceres's newton and dogleg receive
+// (solver/newton_model_cost.h): the two differ in globalisation (trust region
+// against line search) and linear algebra (CXSparse Cholesky of J^T J against
+// Eigen's LDL^T of the assembled matrix), not in the Newton model.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include "core/incremental_potential.h"
+#include "core/state.h"
+#include "core/term_hessian.h"
+#include "solver/step_solver.h"
+
+namespace ipstep {
+
+class ProjectedNewtonSolver : public StepSolver {
+ public:
+  // Seconds spent per phase, accumulated over all solves (for reports).
+  struct Timings {
+    double gradient = 0.0;   // energy + gradient (stopping measure)
+    double hessian = 0.0;    // per-term models, projection, assembly
+    double factorize = 0.0;  // numeric factorisation + solve
+    double analyze = 0.0;    // symbolic analysis (once per structure)
+    double line_search = 0.0;
+  };
+
+  // Uses options.tolerance, max_iterations and time_limit. Throws InputError
+  // for invalid values.
+  ProjectedNewtonSolver(IncrementalPotential* potential, const State* state,
+                        const OptimizerOptions& options);
+  StepSolveResult Solve(Eigen::VectorXd* x) override;
+
+  // Assembles the projected Hessian over the free DOFs at full positions x
+  // (lower triangle). False if a term cannot be evaluated. Public for tests and
+  // micro-benchmarks.
+  bool AssembleHessian(const Eigen::VectorXd& x);
+  const Eigen::SparseMatrix<double>& hessian() const { return hessian_; }
+  // Free DOF index of each DOF (-1 for constrained ones).
+  const std::vector<int>& free_index() const { return free_index_; }
+  const Timings& timings() const { return timings_; }
+
+ private:
+  void BuildStructure();
+  // Adds the term's projected model Hessian at x into hessian_ through its slots.
+  bool AddTermHessian(const Term& term, const double* x, double weight, const int* slots);
+  // Factorises the Hessian (regularising if needed) and solves H p = -g.
+  bool ComputeDirection(const Eigen::VectorXd& gradient, Eigen::VectorXd* direction);
+
+  IncrementalPotential* potential_;
+  const State* state_;
+  double tolerance_;
+  int max_iterations_;
+  double time_limit_;
+  Timings timings_;
+
+  int built_version_ = -1;
+  int num_free_ = 0;
+  std::vector<int> free_index_;  // per DOF: index among free DOFs, or -1
+  // Per term: offset into slots_, which holds for each lower-triangle local
+  // pair (a >= b, both free) the index into hessian_.valuePtr(), or -1.
+  std::vector<int> slot_offset_;
+  std::vector<int> slots_;
+  std::vector<int> diagonal_slots_;
+  Eigen::SparseMatrix<double> hessian_;  // column-major, lower triangle
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+  bool analyzed_ = false;
+
+  // Scratch.
+  TermModelEvaluator evaluator_;
+  TermModel model_;
+  ProjectedHessian projected_;
+  TermMatrix local_hessian_;
+  std::vector<const double*> parameters_;
+  Eigen::VectorXd gradient_;
+  Eigen::VectorXd trial_;
+  Eigen::VectorXd free_rhs_;
+  Eigen::VectorXd free_step_;
+};
+
+}  // namespace ipstep
