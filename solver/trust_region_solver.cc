@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include <glog/logging.h>
+
 #include "core/stopping_rule.h"
 #include "solver/newton_model_cost.h"
 #include "solver/solve_status.h"
@@ -213,6 +215,7 @@ StepSolveResult TrustRegionSolver::Solve(Eigen::VectorXd* x) {
     restart_point_.resize(0);
     trial_since_callback_ = false;
     ceres::Solve(options, problem_.get(), &summary);
+    VLOG(3) << summary.FullReport();
     iterations += summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
     evaluations += summary.num_residual_evaluations;
     bool backtracked = summary.termination_type == ceres::USER_FAILURE && restart_point_.size() > 0;

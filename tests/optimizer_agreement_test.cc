@@ -30,7 +30,8 @@ TEST(OptimizerAgreement, AllOptimizersReachTheSameClothStep) {
         OneStep(integrator, "newton", reference_tolerance, &reference_report);
     ASSERT_TRUE(reference_report.converged)
         << reference_report.status << " residual " << reference_report.residual;
-    for (const char* optimizer : {"newton", "dogleg", "lbfgs", "bfgs", "ncg", "gradient_descent"}) {
+    for (const char* optimizer : {"newton", "dogleg", "gauss_newton", "lbfgs", "bfgs", "ncg",
+                                  "gradient_descent", "projected_newton"}) {
       StepReport r;
       const Eigen::VectorXd x = OneStep(integrator, optimizer, tolerance, &r);
       EXPECT_TRUE(r.converged) << integrator << " " << optimizer << ": " << r.status;

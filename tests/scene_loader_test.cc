@@ -93,10 +93,10 @@ std::vector<double> VelocityOf(const Scene& scene, int node) {
 // ---- Built-in scenes ------------------------------------------------------
 
 TEST(BuiltinScenesTest, NamesAndTexts) {
-  EXPECT_EQ(
-      BuiltinSceneNames(),
-      (std::set<std::string>{"cloth", "cloth_box", "cloth_sphere", "drop", "fpu", "impact",
-                             "oscillator", "slope", "spring_pendulum", "squeeze", "two_squares"}));
+  EXPECT_EQ(BuiltinSceneNames(),
+            (std::set<std::string>{"cloth", "cloth_box", "cloth_sphere", "drop", "fpu",
+                                   "hanging_square", "impact", "oscillator", "slope",
+                                   "spring_pendulum", "squeeze", "two_squares"}));
   SceneLoadOptions options;
   options.extra_effects = EffectRegistry::Global().UserNames();  // contact, friction
   for (const std::string& name : BuiltinSceneNames()) {
@@ -169,6 +169,32 @@ TEST(BuiltinScenesTest, Cloth) {
   EXPECT_EQ(scene.effects, (std::vector<std::string>{"gravity", "springs"}));
   EXPECT_EQ(scene.time_step, 1.0 / 60);
   EXPECT_EQ(scene.steps, 60);
+}
+
+// The course code's section 2 square: n_seg = 4 (5 x 5 nodes), rho = 1000 kg/m^2
+// spread evenly (m = rho side^2 / (n_seg + 1)^2), k = 1e3 on edges and both
+// diagonals, the top corners pinned, h = 0.02.
+TEST(BuiltinScenesTest, HangingSquare) {
+  for (int n : {0, 41}) {
+    SceneLoadOptions options;
+    options.grid_size = n;
+    const Scene scene = LoadScene("hanging_square", options);
+    const int nodes = n == 0 ? 5 : n;
+    ASSERT_EQ(scene.num_nodes(), nodes * nodes);
+    for (double mass : scene.masses) EXPECT_DOUBLE_EQ(mass, 1000.0 / (nodes * nodes));
+    // Structural 2 (n - 1) n + shear 2 (n - 1)^2.
+    EXPECT_EQ(static_cast<int>(scene.springs.size()),
+              2 * (nodes - 1) * nodes + 2 * (nodes - 1) * (nodes - 1));
+    for (const Spring& spring : scene.springs) {
+      EXPECT_EQ(spring.model, SpringModel::kSquaredStrain);
+      EXPECT_EQ(spring.stiffness, 1e3);
+    }
+    EXPECT_EQ(scene.pinned, (std::vector<int>{0, nodes - 1}));
+    EXPECT_EQ(PositionOf(scene, 0), (std::vector<double>{-0.5, 0.5}));
+    EXPECT_EQ(PositionOf(scene, nodes * nodes - 1), (std::vector<double>{0.5, -0.5}));
+    EXPECT_EQ(scene.time_step, 0.02);
+    EXPECT_EQ(scene.gravity, (std::vector<double>{0, -9.81}));
+  }
 }
 
 // Hairer, Lubich & Wanner, GNI I.5.1: x0_i = (q_2i + q_2i-1) / sqrt 2,
@@ -811,8 +837,8 @@ TEST(BadInputTest, UnreadableFiles) {
 TEST(BadInputTest, UnknownBuiltinName) {
   std::string message = InputErrorOf([] { LoadScene("no_such_scene"); });
   EXPECT_NE(message.find("no_such_scene"), std::string::npos) << message;
-  EXPECT_NE(message.find("cloth, cloth_box, cloth_sphere, drop, fpu, impact, oscillator, slope, "
-                         "spring_pendulum, squeeze, two_squares"),
+  EXPECT_NE(message.find("cloth, cloth_box, cloth_sphere, drop, fpu, hanging_square, impact, "
+                         "oscillator, slope, spring_pendulum, squeeze, two_squares"),
             std::string::npos)
       << message;
   message = InputErrorOf([] { BuiltinSceneText("no_such_scene"); });
