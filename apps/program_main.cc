@@ -8,6 +8,7 @@
 
 #include "apps/command_line.h"
 #include "core/input_error.h"
+#include "solver/allocator_tuning.h"
 
 namespace ipstep {
 
@@ -15,6 +16,7 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
                 const std::function<int()>& run) {
   gflags::SetUsageMessage(usage);
   FLAGS_logtostderr = true;
+  KeepLargeAllocations();  // solver/allocator_tuning.h
   try {
     CheckCommandLine(argc, argv);
     gflags::ParseCommandLineFlags(&argc, &argv, true);

@@ -30,6 +30,7 @@
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "solver/allocator_tuning.h"
 
 DEFINE_string(scenes, "oscillator", "Comma-separated scene names or JSON paths");
 DEFINE_string(grid_sizes, "0",
@@ -312,6 +313,7 @@ int main(int argc, char** argv) {
       "ipstep_bench --scenes=... --integrators=... --optimizers=... "
       "[--dts|--dt_factors] [--tolerances] [--shard=i/N] --output=FILE.csv");
   FLAGS_logtostderr = true;
+  ipstep::KeepLargeAllocations();  // as the ipstep programs (solver/allocator_tuning.h)
   try {
     ipstep::CheckCommandLine(argc, argv);
   } catch (const ipstep::InputError& e) {
