@@ -1,6 +1,10 @@
 // Google Benchmark micro-benchmarks of the hot paths (docs/benchmarks.md):
 //   BM_Term/<element>            residual + Jacobian of one autodiff term
 //   BM_EnergyGradient/<n>        E and grad E of a whole cloth step (n x n nodes)
+//   BM_TermModel/<spring>/<how>  projected Newton model of one spring
+//                                (core/term_hessian.h): analytic over d, central
+//                                differences over d, central differences over
+//                                all parameters (no pair reduction)
 //   BM_ReferenceHessian/<n>      projected per-term Hessians + sparse assembly
 //   BM_NewtonIteration/<n>       one Newton iteration from the start of a cloth
 //                                step: Ceres newton (LM, CX_SPARSE) and the Eigen
@@ -11,6 +15,7 @@
 #include <benchmark/benchmark.h>
 #include <ceres/autodiff_cost_function.h>
 
+#include "core/term_hessian.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
 #include "energies/inertia.h"
@@ -102,6 +107,40 @@ BENCHMARK(BM_Term_inertia_3d);
 BENCHMARK(BM_Term_mass_damping_2d);
 BENCHMARK(BM_Term_stiffness_damping_2d);
 BENCHMARK(BM_Term_gravity_quasi_static_2d);
+
+// How a spring's Newton model is built: 0 analytic curvature over d (the
+// default), 1 central differences over d, 2 central differences over all
+// 2 x dimension parameters.
+template <int kDim>
+void BM_TermModel_hookean(benchmark::State& bench) {
+  Term term;
+  term.cost = std::make_unique<ceres::AutoDiffCostFunction<HookeanSpring<kDim>, 1, kDim, kDim>>(
+      new HookeanSpring<kDim>(1e4, 1.0));
+  term.nodes = {0, 1};
+  const HookeanSpring<kDim> spring(1e4, 1.0);
+  const int how = static_cast<int>(bench.range(0));
+  term.pair_difference = how < 2;
+  if (how == 0) {
+    term.curvature = [spring](const double* const* x, const double* c, double* curvature) {
+      return spring.ResidualCurvature(x, c, curvature);
+    };
+  }
+  double x[2][3] = {{0.01, -0.02, 0.03}, {0.9, 0.05, -0.04}};  // compressed: projected
+  const double* parameters[2] = {x[0], x[1]};
+  TermModelEvaluator evaluator;
+  TermModel model;
+  ProjectedHessian projected;
+  for (auto _ : bench) {
+    benchmark::DoNotOptimize(evaluator.Evaluate(term, kDim, 1.0, parameters, true, &model));
+    ProjectHessian(model, &projected);
+    benchmark::DoNotOptimize(projected.values.data());
+    benchmark::ClobberMemory();
+  }
+  const char* labels[3] = {"analytic over d", "differences over d", "differences, 2 nodes"};
+  bench.SetLabel(labels[how]);
+}
+BENCHMARK(BM_TermModel_hookean<2>)->DenseRange(0, 2);
+BENCHMARK(BM_TermModel_hookean<3>)->DenseRange(0, 2);
 
 // A backward-Euler cloth of n x n nodes at the start of its first step (the
 // integrator's predictor set, x at the initial guess), with mutable access to
