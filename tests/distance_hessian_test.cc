@@ -1,22 +1,35 @@
 // Analytic Hessians of the contact distances (contact/distance_hessian.h)
 // against central differences of the analytic gradients (contact/obstacle.h,
 // point_edge.h), case by case and region by region, at random well-conditioned
-// configurations, static and moving obstacles, 2D and 3D.
+// configurations, static and moving obstacles, 2D and 3D; the gap terms'
+// analytic curvature against the Newton model built from finite differences
+// of their Jacobians (core/term_hessian.h); and the contact manager's terms
+// carrying it.
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "contact/barrier.h"
+#include "contact/contact_manager.h"
+#include "contact/contact_terms.h"
 #include "contact/distance_hessian.h"
 #include "contact/obstacle.h"
 #include "contact/point_edge.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_parameter.h"
 #include "contact/segment_segment.h"
+#include "core/term_hessian.h"
+#include "energies/effect_registry.h"
+#include "problems/scene_loader.h"
+#include "sim/simulation.h"
 
 namespace ipstep {
 namespace {
@@ -545,6 +558,256 @@ TEST(DistanceHessian, PointEdge2dEndsAndInterior) {
       };
       ExpectHessian(h, gradient, Stack({p, a, b}, 2), false, "region " + std::to_string(region));
     }
+  }
+}
+
+// ---------------------------------------------------------------- gap terms
+
+// The term's Newton model with its analytic curvature against the same term
+// with curvature empty (central differences of its Jacobian), at a gap far
+// above the difference step; and the curvature part is a sizeable share of the
+// model (against the Gauss-Newton model).
+void ExpectTermCurvature(std::unique_ptr<ceres::CostFunction> cost,
+                         const ResidualCurvature& curvature, std::vector<V> points, int dimension,
+                         const std::string& what) {
+  static const double kappa = 1.0;
+  const int blocks = static_cast<int>(points.size());
+  std::vector<double> storage(blocks * dimension);
+  std::vector<const double*> x(blocks);
+  for (int b = 0; b < blocks; ++b) {
+    for (int k = 0; k < dimension; ++k) storage[b * dimension + k] = points[b][k];
+  }
+  for (int b = 0; b < blocks; ++b) x[b] = storage.data() + b * dimension;
+  Term term;
+  term.nodes.resize(blocks);
+  term.cost = std::move(cost);
+  term.loss = std::make_unique<BarrierLoss>(1.0, 1.0, &kappa);
+  TermModelEvaluator evaluator;
+  TermModel differences, analytic, gauss_newton;
+  ASSERT_TRUE(evaluator.Evaluate(term, dimension, 1.0, x.data(), true, &differences)) << what;
+  term.curvature = curvature;
+  ASSERT_TRUE(evaluator.Evaluate(term, dimension, 1.0, x.data(), true, &analytic)) << what;
+  term.gauss_newton_model = true;
+  ASSERT_TRUE(evaluator.Evaluate(term, dimension, 1.0, x.data(), true, &gauss_newton)) << what;
+  EXPECT_FALSE(differences.curvature_dropped) << what;
+  EXPECT_FALSE(analytic.curvature_dropped) << what;
+  const double scale = analytic.hessian.cwiseAbs().maxCoeff();
+  EXPECT_LE((analytic.hessian - differences.hessian).cwiseAbs().maxCoeff(),
+            kRelativeTolerance * scale)
+      << what << "\nanalytic\n"
+      << analytic.hessian << "\ndifferences\n"
+      << differences.hessian;
+  EXPECT_GT((analytic.hessian - gauss_newton.hessian).cwiseAbs().maxCoeff(), 1e-3 * scale) << what;
+}
+
+// d_hat = 1 in every term below, gaps in [0.2, 0.6]: well inside the barrier's
+// reach, where its curvature part is a sizeable share of the model.
+constexpr double kDHat = 1.0;
+constexpr double kMinDistance = 1e-9;
+
+TEST(GapCurvature, PointObstacleGapMatchesDifferences) {
+  Random random(10);
+  std::vector<Scenario> all = Scenarios(ObstacleType::kSphere, {2, 3});
+  for (const Scenario& s : Scenarios(ObstacleType::kBox, {2, 3})) all.push_back(s);
+  for (const Scenario& s : all) {
+    const int dim = s.obstacle.dimension;
+    for (int trial = 0; trial < 5; ++trial) {
+      V x;
+      if (s.obstacle.type == ObstacleType::kSphere) {
+        x = s.obstacle.point + s.obstacle.velocity * s.t +
+            random.Uniform(0.7, 1.2) * random.Direction(dim);
+      } else {
+        // Corner regions (2D and 3D) and a 3D edge region.
+        const bool outside[3] = {true, true, trial % 2 == 0};
+        x = PointNearBox(s, outside, 0.1, &random);
+      }
+      auto gap = std::make_unique<PointObstacleGap>(dim, &s.obstacle, &s.t, kDHat, kMinDistance);
+      const ResidualCurvature curvature = GapCurvature(gap.get());
+      ExpectTermCurvature(std::move(gap), curvature, {x}, dim, s.name);
+    }
+  }
+}
+
+TEST(GapCurvature, EdgeObstacleGapMatchesDifferences) {
+  Random random(11);
+  for (const Scenario& s : EdgeScenarios()) {
+    const Obstacle& o = s.obstacle;
+    const int dim = o.dimension;
+    for (int feature = 0; feature < o.NumEdgeFeatures(); ++feature) {
+      for (bool lagged : {false, true}) {
+        for (int region = 0; region < 3; ++region) {
+          V a, b;
+          SegmentNearPoint(o.EdgeFeature(feature, s.t), dim, region, o.FeatureRadius() + 0.2, 0.4,
+                           &random, &a, &b);
+          // The lagged point is the true closest point's parameter, moved a little.
+          double alpha = ClosestSegmentParameter(o.EdgeFeature(feature, s.t), a, b);
+          alpha = std::clamp(alpha + 0.05, 0.0, 1.0);
+          auto gap = std::make_unique<EdgeObstacleGap>(dim, &o, feature, &s.t, kDHat, kMinDistance,
+                                                       lagged ? &alpha : nullptr);
+          const ResidualCurvature curvature = GapCurvature(gap.get());
+          ExpectTermCurvature(
+              std::move(gap), curvature, {a, b}, dim,
+              s.name + (lagged ? " lagged" : "") + " region " + std::to_string(region));
+        }
+      }
+    }
+  }
+}
+
+TEST(GapCurvature, FaceObstacleGapMatchesDifferences) {
+  Random random(12);
+  for (const Scenario& s : FaceScenarios()) {
+    const Obstacle& o = s.obstacle;
+    for (int feature = 0; feature < o.NumFaceFeatures(); ++feature) {
+      for (bool lagged : {false, true}) {
+        for (int region = 0; region < 7; ++region) {
+          V x[3];
+          TriangleNearPoint(o.FaceFeature(feature, s.t), region, o.FeatureRadius() + 0.2, 0.4,
+                            &random, x);
+          // Lagged weights: the closest point's, moved a little towards the centroid.
+          const Eigen::Vector3d weights =
+              0.9 * PointTriangleDistance(o.FaceFeature(feature, s.t), x[0], x[1], x[2]).weights +
+              Eigen::Vector3d::Constant(0.1 / 3.0);
+          auto gap = std::make_unique<FaceObstacleGap>(&o, feature, &s.t, kDHat, kMinDistance,
+                                                       lagged ? &weights : nullptr);
+          const ResidualCurvature curvature = GapCurvature(gap.get());
+          ExpectTermCurvature(
+              std::move(gap), curvature, {x[0], x[1], x[2]}, 3,
+              s.name + (lagged ? " lagged" : "") + " region " + std::to_string(region));
+        }
+      }
+    }
+  }
+}
+
+TEST(GapCurvature, EdgeBoxEdgeGapMatchesDifferences) {
+  Random random(13);
+  for (const Scenario& s : Scenarios(ObstacleType::kBox, {3})) {
+    for (int edge = 0; edge < s.obstacle.NumBoxEdges(); edge += 5) {
+      V p, q;
+      s.obstacle.BoxEdge(edge, s.t, &p, &q);
+      for (int region = 0; region < 4; ++region) {
+        V a, b;
+        SegmentNearSegment(p, q, region & 1, region & 2, 0.4, &random, &a, &b);
+        auto gap = std::make_unique<EdgeBoxEdgeGap>(&s.obstacle, edge, &s.t, kDHat, kMinDistance);
+        const ResidualCurvature curvature = GapCurvature(gap.get());
+        ExpectTermCurvature(std::move(gap), curvature, {a, b}, 3,
+                            s.name + " region " + std::to_string(region));
+      }
+    }
+  }
+}
+
+TEST(GapCurvature, PointEdgeGapMatchesDifferences) {
+  Random random(14);
+  for (int region = 0; region < 3; ++region) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const V p(random.Uniform(-1.0, 1.0), random.Uniform(-1.0, 1.0), 0.0);
+      V a, b;
+      SegmentNearPoint(p, 2, region, 0.2, 0.4, &random, &a, &b);
+      auto gap = std::make_unique<PointEdgeGap>(kDHat, kMinDistance);
+      const ResidualCurvature curvature = GapCurvature(gap.get());
+      ExpectTermCurvature(std::move(gap), curvature, {p, a, b}, 2,
+                          "region " + std::to_string(region));
+    }
+  }
+}
+
+// At a gap of 1e-8 (d_hat 1e-3), finite differences with their 1e-6 step
+// leave the domain and drop the curvature; the analytic one is the closed form
+// of a sphere, Hess d = (I - n n^T) / (R + d), times -w rho' u (to round-off
+// of the gap, 1e-8 relative, and of the Gauss-Newton part it is taken from).
+TEST(GapCurvature, TinyGapKeepsTheCurvature) {
+  const Scenario s = MakeScenario(ObstacleType::kSphere, 3, true);
+  const double d_hat = 1e-3, gap = 1e-8, kappa = 1e4, weight = 2.0;
+  const V n = V(1.0, -2.0, 0.5).normalized();
+  const V x = s.obstacle.point + s.obstacle.velocity * s.t + (s.obstacle.radius + gap) * n;
+  const double* parameters[1] = {x.data()};
+  Term term;
+  term.nodes = {0};
+  auto cost = std::make_unique<PointObstacleGap>(3, &s.obstacle, &s.t, d_hat, 0.0);
+  const ResidualCurvature curvature = GapCurvature(cost.get());
+  term.cost = std::move(cost);
+  term.loss = std::make_unique<BarrierLoss>(d_hat, 1.0, &kappa);
+  TermModelEvaluator evaluator;
+  TermModel differences, analytic, gauss_newton;
+  ASSERT_TRUE(evaluator.Evaluate(term, 3, weight, parameters, true, &differences));
+  EXPECT_TRUE(differences.curvature_dropped);
+  term.curvature = curvature;
+  ASSERT_TRUE(evaluator.Evaluate(term, 3, weight, parameters, true, &analytic));
+  EXPECT_FALSE(analytic.curvature_dropped);
+  term.gauss_newton_model = true;
+  ASSERT_TRUE(evaluator.Evaluate(term, 3, weight, parameters, true, &gauss_newton));
+  const double u = d_hat - gap;
+  double rho[3];
+  BarrierLoss(d_hat, 1.0, &kappa).Evaluate(u * u, rho);
+  const Eigen::Matrix3d expected = -weight * rho[1] * u *
+                                   (Eigen::Matrix3d::Identity() - n * n.transpose()) /
+                                   (s.obstacle.radius + gap);
+  const Eigen::MatrixXd part = analytic.hessian - gauss_newton.hessian;
+  EXPECT_LE((part - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.cwiseAbs().maxCoeff())
+      << part << "\n"
+      << expected;
+  EXPECT_GT(expected.cwiseAbs().maxCoeff(), 0.0);
+}
+
+// Out of reach (d >= d_hat) the curvature is zero; inside the obstacle the
+// callback fails as the cost function does.
+TEST(GapCurvature, InactiveIsZeroAndInfeasibleFails) {
+  const Scenario s = MakeScenario(ObstacleType::kSphere, 3, true);
+  const PointObstacleGap gap(3, &s.obstacle, &s.t, kDHat, kMinDistance);
+  const V centre = s.obstacle.point + s.obstacle.velocity * s.t;
+  const double c = 0.7;
+  double curvature[9];
+  const V far = centre + V(2.0, 0.0, 0.0);
+  const double* x[1] = {far.data()};
+  ASSERT_TRUE(gap.Curvature(x, &c, curvature));
+  for (double v : curvature) EXPECT_EQ(v, 0.0);
+  const V inside = centre + V(0.1, 0.0, 0.0);
+  x[0] = inside.data();
+  EXPECT_FALSE(gap.Curvature(x, &c, curvature));
+}
+
+// Every gap term the contact manager builds carries its second-order model:
+// analytic curvature, or Gauss-Newton for plane gaps (affine distance).
+TEST(GapCurvature, ContactManagerTermsCarryCurvature) {
+  // Term types: 0 plane point, 1 other point, 2 edge, 3 face, 4 box edge,
+  // 5 2D point-edge; the scenes and the types each one builds.
+  const std::pair<const char*, std::vector<int>> scenes[] = {
+      {"drop", {0}}, {"cloth_box", {1, 3, 4}}, {"cloth_sphere", {2, 3}}, {"two_squares", {0, 5}}};
+  for (const auto& [scene, expected] : scenes) {
+    SimulationOptions options;
+    options.integrator.name = "backward_euler";
+    options.optimizer.optimizer = Optimizer::kNewton;
+    SceneLoadOptions load;
+    load.extra_effects = EffectRegistry::Global().UserNames();  // contact, friction
+    Simulation sim(LoadScene(scene, load), options);
+    int counts[6] = {0, 0, 0, 0, 0, 0};
+    auto all_seen = [&] {
+      return std::all_of(expected.begin(), expected.end(), [&](int k) { return counts[k] > 0; });
+    };
+    for (int step = 0; step < sim.steps() && !all_seen(); ++step) {
+      sim.Step();
+      for (const Term& term : sim.potential().terms()) {
+        if (term.family != ContactManager::kContactFamily) continue;
+        const ceres::CostFunction* cost = term.cost.get();
+        if (dynamic_cast<const PointObstacleGap*>(cost) != nullptr) {
+          // Plane gaps (the only affine distance) are Gauss-Newton models.
+          const bool plane = term.gauss_newton_model;
+          ++counts[plane ? 0 : 1];
+          EXPECT_NE(plane, static_cast<bool>(term.curvature)) << scene;
+          continue;
+        }
+        EXPECT_FALSE(term.gauss_newton_model) << scene;
+        EXPECT_TRUE(static_cast<bool>(term.curvature)) << scene;
+        if (dynamic_cast<const EdgeObstacleGap*>(cost) != nullptr) ++counts[2];
+        if (dynamic_cast<const FaceObstacleGap*>(cost) != nullptr) ++counts[3];
+        if (dynamic_cast<const EdgeBoxEdgeGap*>(cost) != nullptr) ++counts[4];
+        if (dynamic_cast<const PointEdgeGap*>(cost) != nullptr) ++counts[5];
+      }
+    }
+    EXPECT_TRUE(all_seen()) << scene << ": " << counts[0] << " " << counts[1] << " " << counts[2]
+                            << " " << counts[3] << " " << counts[4] << " " << counts[5];
   }
 }
 
