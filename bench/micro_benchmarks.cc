@@ -9,12 +9,18 @@
 //   BM_NewtonIteration/<n>       one Newton iteration from the start of a cloth
 //                                step: Ceres newton (LM, CX_SPARSE) and the Eigen
 //                                reference projected Newton
+//   BM_FaceModel_<curvature>     the Newton model of one face-box-corner gap
+//                                term (core/term_hessian.h): analytic curvature
+//                                (contact/distance_hessian.h) or central
+//                                differences of its Jacobian
 //   build_bench/bench/micro_benchmarks --benchmark_filter=Term
 #include <memory>
 
 #include <benchmark/benchmark.h>
 #include <ceres/autodiff_cost_function.h>
 
+#include "contact/barrier.h"
+#include "contact/contact_terms.h"
 #include "core/term_hessian.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
@@ -222,6 +228,39 @@ void BM_NewtonIteration_Reference(benchmark::State& bench) {
   }
 }
 BENCHMARK(BM_NewtonIteration_Reference)->Apply(ClothArguments);
+
+// A triangle 1 mm above a box corner (d_hat 5 mm), closest point interior.
+void FaceModel(benchmark::State& bench, bool analytic) {
+  static const double kappa = 1e5, time = 0.0;
+  Obstacle box;
+  box.type = ObstacleType::kBox;
+  box.dimension = 3;
+  box.lower = Eigen::Vector3d(-0.2, -0.3, -0.2);
+  box.upper = Eigen::Vector3d(0.2, 0.0, 0.2);
+  const int corner = 7;  // upper in every axis
+  auto gap = std::make_unique<FaceObstacleGap>(&box, corner, &time, 5e-3, 1e-9);
+  Term term;
+  term.nodes = {0, 1, 2};
+  if (analytic) term.curvature = GapCurvature(gap.get());
+  term.cost = std::move(gap);
+  term.loss = std::make_unique<BarrierLoss>(5e-3, 1e-4, &kappa);
+  const double x[3][3] = {{0.15, 0.001, 0.17}, {0.25, 0.0015, 0.18}, {0.2, 0.0012, 0.26}};
+  const double* parameters[3] = {x[0], x[1], x[2]};
+  TermModelEvaluator evaluator;
+  TermModel model;
+  if (!evaluator.Evaluate(term, 3, 1.0, parameters, true, &model) || model.curvature_dropped) {
+    bench.SkipWithError("the face term's model failed");
+    return;
+  }
+  for (auto _ : bench) {
+    benchmark::DoNotOptimize(evaluator.Evaluate(term, 3, 1.0, parameters, true, &model));
+    benchmark::ClobberMemory();
+  }
+}
+void BM_FaceModel_analytic(benchmark::State& b) { FaceModel(b, true); }
+void BM_FaceModel_differences(benchmark::State& b) { FaceModel(b, false); }
+BENCHMARK(BM_FaceModel_analytic);
+BENCHMARK(BM_FaceModel_differences);
 
 }  // namespace
 }  // namespace ipstep

@@ -485,8 +485,14 @@ void ContactManager::RebuildBarrierTerms() {
     term.family = kContactFamily;
     term.impulsive = true;
     term.nodes = {surface_.nodes[pair.slot]};
-    term.cost = std::make_unique<PointObstacleGap>(dim_, &options_.obstacles[pair.obstacle], &tau_,
-                                                   d_hat, margin_);
+    const Obstacle& obstacle = options_.obstacles[pair.obstacle];
+    auto cost = std::make_unique<PointObstacleGap>(dim_, &obstacle, &tau_, d_hat, margin_);
+    if (obstacle.type == ObstacleType::kPlane) {
+      term.gauss_newton_model = true;  // the plane's distance is affine
+    } else {
+      term.curvature = GapCurvature(cost.get());
+    }
+    term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.weights[pair.slot], &kappa_);
     potential_->AddTerm(std::move(term));
   }
@@ -498,9 +504,11 @@ void ContactManager::RebuildBarrierTerms() {
     term.family = kContactFamily;
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
-    term.cost =
+    auto cost =
         std::make_unique<EdgeObstacleGap>(dim_, &options_.obstacles[pair.obstacle], pair.feature,
                                           &tau_, d_hat, margin_, &edge_obstacle_alpha_[k]);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.edge_weights[pair.edge], &kappa_);
     potential_->AddTerm(std::move(term));
   }
@@ -512,7 +520,9 @@ void ContactManager::RebuildBarrierTerms() {
     term.family = kContactFamily;
     term.impulsive = true;
     term.nodes = {surface_.nodes[pair.slot], e[0], e[1]};
-    term.cost = std::make_unique<PointEdgeGap>(d_hat, margin_);
+    auto cost = std::make_unique<PointEdgeGap>(d_hat, margin_);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.weights[pair.slot], &kappa_);
     potential_->AddTerm(std::move(term));
   }

@@ -1,5 +1,6 @@
 #include "contact/contact_terms.h"
 
+#include "contact/distance_hessian.h"
 #include "contact/friction.h"
 #include "contact/point_edge.h"
 
@@ -18,6 +19,26 @@ void WriteGapResidual(double d, double d_hat, const Eigen::Vector3d* grad, int b
   for (int block = 0; block < blocks; ++block) {
     if (jacobians[block] == nullptr) continue;
     for (int k = 0; k < dimension; ++k) jacobians[block][k] = active ? -grad[block][k] : 0.0;
+  }
+}
+
+// Row-major curvature over N blocks of `dimension` coordinates from the
+// Hessian of d over N blocks of S coordinates (S = 3; 2 for the 2D point-edge
+// term; a 2D term keeps the x, y rows and columns of each block, the Hessian
+// of d restricted to the plane): -c0 Hess d while active, zero otherwise.
+template <int N, int S>
+void WriteGapCurvature(const Eigen::Matrix<double, N * S, N * S>& hessian, bool active, double c0,
+                       int dimension, double* curvature) {
+  const int n = N * dimension;
+  for (int bi = 0; bi < N; ++bi) {
+    for (int ki = 0; ki < dimension; ++ki) {
+      double* row = curvature + (bi * dimension + ki) * n;
+      for (int bj = 0; bj < N; ++bj) {
+        for (int kj = 0; kj < dimension; ++kj) {
+          row[bj * dimension + kj] = active ? -c0 * hessian(bi * S + ki, bj * S + kj) : 0.0;
+        }
+      }
+    }
   }
 }
 
@@ -40,6 +61,17 @@ bool PointObstacleGap::Evaluate(double const* const* x, double* residuals,
   const double d = obstacle_->Distance(ToPoint(x[0], dimension_), *time_, &gradient);
   if (!(d > min_distance_)) return false;
   WriteGapResidual(d, d_hat_, &gradient, 1, dimension_, residuals, jacobians);
+  return true;
+}
+
+bool PointObstacleGap::Curvature(const double* const* x, const double* c, double* curvature) const {
+  const Eigen::Vector3d y = ToPoint(x[0], dimension_);
+  const double d = obstacle_->Distance(y, *time_);
+  if (!(d > min_distance_)) return false;
+  const bool active = d < d_hat_;
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+  if (active && !ObstacleDistanceHessian(*obstacle_, y, *time_, &hessian)) return false;
+  WriteGapCurvature<1, 3>(hessian, active, c[0], dimension_, curvature);
   return true;
 }
 
@@ -70,6 +102,24 @@ bool EdgeObstacleGap::Evaluate(double const* const* x, double* residuals,
   return true;
 }
 
+bool EdgeObstacleGap::Curvature(const double* const* x, const double* c, double* curvature) const {
+  const Eigen::Vector3d a = ToPoint(x[0], dimension_), b = ToPoint(x[1], dimension_);
+  double d = obstacle_->EdgeDistance(feature_, a, b, *time_);
+  if (!(d > min_distance_)) return false;
+  if (alpha_ != nullptr) d = obstacle_->EdgePointDistance(feature_, a, b, *alpha_, *time_);
+  const bool active = d < d_hat_;
+  Matrix6d hessian = Matrix6d::Zero();
+  if (active) {
+    const bool ok =
+        alpha_ != nullptr
+            ? EdgePointDistanceHessian(*obstacle_, feature_, a, b, *alpha_, *time_, &hessian)
+            : EdgeDistanceHessian(*obstacle_, feature_, a, b, *time_, &hessian);
+    if (!ok) return false;
+  }
+  WriteGapCurvature<2, 3>(hessian, active, c[0], dimension_, curvature);
+  return true;
+}
+
 FaceObstacleGap::FaceObstacleGap(const Obstacle* obstacle, int feature, const double* time,
                                  double d_hat, double min_distance, const Eigen::Vector3d* weights)
     : obstacle_(obstacle),
@@ -95,6 +145,24 @@ bool FaceObstacleGap::Evaluate(double const* const* x, double* residuals,
   return true;
 }
 
+bool FaceObstacleGap::Curvature(const double* const* x, const double* c, double* curvature) const {
+  const Eigen::Vector3d a = ToPoint(x[0], 3), b = ToPoint(x[1], 3), v = ToPoint(x[2], 3);
+  double d = obstacle_->FaceDistance(feature_, a, b, v, *time_);
+  if (!(d > min_distance_)) return false;
+  if (weights_ != nullptr) d = obstacle_->FacePointDistance(feature_, a, b, v, *weights_, *time_);
+  const bool active = d < d_hat_;
+  Matrix9d hessian = Matrix9d::Zero();
+  if (active) {
+    const bool ok =
+        weights_ != nullptr
+            ? FacePointDistanceHessian(*obstacle_, feature_, a, b, v, *weights_, *time_, &hessian)
+            : FaceDistanceHessian(*obstacle_, feature_, a, b, v, *time_, &hessian);
+    if (!ok) return false;
+  }
+  WriteGapCurvature<3, 3>(hessian, active, c[0], 3, curvature);
+  return true;
+}
+
 EdgeBoxEdgeGap::EdgeBoxEdgeGap(const Obstacle* obstacle, int box_edge, const double* time,
                                double d_hat, double min_distance)
     : obstacle_(obstacle),
@@ -115,6 +183,19 @@ bool EdgeBoxEdgeGap::Evaluate(double const* const* x, double* residuals, double*
   return true;
 }
 
+bool EdgeBoxEdgeGap::Curvature(const double* const* x, const double* c, double* curvature) const {
+  const Eigen::Vector3d a = ToPoint(x[0], 3), b = ToPoint(x[1], 3);
+  const double d = obstacle_->BoxEdgeDistance(box_edge_, a, b, *time_);
+  if (!(d > min_distance_)) return false;
+  const bool active = d < d_hat_;
+  Matrix6d hessian = Matrix6d::Zero();
+  if (active && !BoxEdgeDistanceHessian(*obstacle_, box_edge_, a, b, *time_, &hessian)) {
+    return false;
+  }
+  WriteGapCurvature<2, 3>(hessian, active, c[0], 3, curvature);
+  return true;
+}
+
 PointEdgeGap::PointEdgeGap(double d_hat, double min_distance)
     : d_hat_(d_hat), min_distance_(min_distance) {
   set_num_residuals(1);
@@ -129,6 +210,17 @@ bool PointEdgeGap::Evaluate(double const* const* x, double* residuals, double** 
                                    {r.grad_a[0], r.grad_a[1], 0.0},
                                    {r.grad_b[0], r.grad_b[1], 0.0}};
   WriteGapResidual(r.distance, d_hat_, grad, 3, 2, residuals, jacobians);
+  return true;
+}
+
+bool PointEdgeGap::Curvature(const double* const* x, const double* c, double* curvature) const {
+  const Eigen::Vector2d p(x[0][0], x[0][1]), a(x[1][0], x[1][1]), b(x[2][0], x[2][1]);
+  const double d = PointEdgeDistance(p, a, b).distance;
+  if (!(d > min_distance_)) return false;
+  const bool active = d < d_hat_;
+  Matrix6d hessian = Matrix6d::Zero();
+  if (active && !PointEdgeDistanceHessian(p, a, b, &hessian)) return false;
+  WriteGapCurvature<3, 2>(hessian, active, c[0], 2, curvature);
   return true;
 }
 

@@ -6,6 +6,11 @@
 // (returns false) when d <= min_distance: the point is in (or touching) the
 // obstacle, so the trial point is infeasible. Beyond d_hat the residual and its
 // Jacobian are zero, so terms of pairs out of reach cost nothing.
+// Second derivatives (Term::curvature, core/term_hessian.h): sum_k c_k Hess r_k
+// = -c_0 Hess d while active (u > 0), zero beyond d_hat; Hess d is analytic
+// (contact/distance_hessian.h), so Newton models stay exact where the gap is
+// far below the 1e-6 step of finite differences. The plane gap is affine in x:
+// its terms are Gauss-Newton models instead (GapCurvature's caller decides).
 //
 // Friction terms (kind kDissipation) of the relative tangential velocity
 // v_t = T^T v_rel, with the velocity map of the step context
@@ -21,8 +26,18 @@
 
 #include "contact/obstacle.h"
 #include "core/step_context.h"
+#include "core/term.h"
 
 namespace ipstep {
+
+// Term::curvature of a gap term built on `gap`, any of the five classes below
+// (the term owns its cost function, so the pointer lives as long as the term).
+template <class Gap>
+ResidualCurvature GapCurvature(const Gap* gap) {
+  return [gap](const double* const* x, const double* c, double* curvature) {
+    return gap->Curvature(x, c, curvature);
+  };
+}
 
 class PointObstacleGap : public ceres::CostFunction {
  public:
@@ -30,6 +45,8 @@ class PointObstacleGap : public ceres::CostFunction {
   PointObstacleGap(int dimension, const Obstacle* obstacle, const double* time, double d_hat,
                    double min_distance);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+  // Term::curvature: -c[0] Hess d while active, zero beyond d_hat.
+  bool Curvature(const double* const* x, const double* c, double* curvature) const;
 
  private:
   int dimension_;
@@ -49,6 +66,8 @@ class EdgeObstacleGap : public ceres::CostFunction {
   EdgeObstacleGap(int dimension, const Obstacle* obstacle, int feature, const double* time,
                   double d_hat, double min_distance, const double* alpha = nullptr);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+  // Term::curvature: -c[0] Hess d while active, zero beyond d_hat.
+  bool Curvature(const double* const* x, const double* c, double* curvature) const;
 
  private:
   int dimension_;
@@ -72,6 +91,8 @@ class FaceObstacleGap : public ceres::CostFunction {
   FaceObstacleGap(const Obstacle* obstacle, int feature, const double* time, double d_hat,
                   double min_distance, const Eigen::Vector3d* weights = nullptr);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+  // Term::curvature: -c[0] Hess d while active, zero beyond d_hat.
+  bool Curvature(const double* const* x, const double* c, double* curvature) const;
 
  private:
   const Obstacle* obstacle_;
@@ -90,6 +111,8 @@ class EdgeBoxEdgeGap : public ceres::CostFunction {
   EdgeBoxEdgeGap(const Obstacle* obstacle, int box_edge, const double* time, double d_hat,
                  double min_distance);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+  // Term::curvature: -c[0] Hess d while active, zero beyond d_hat.
+  bool Curvature(const double* const* x, const double* c, double* curvature) const;
 
  private:
   const Obstacle* obstacle_;
@@ -104,6 +127,8 @@ class PointEdgeGap : public ceres::CostFunction {
  public:
   PointEdgeGap(double d_hat, double min_distance);
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override;
+  // Term::curvature: -c[0] Hess d while active, zero beyond d_hat.
+  bool Curvature(const double* const* x, const double* c, double* curvature) const;
 
  private:
   double d_hat_;

@@ -257,9 +257,11 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     term.impulsive = true;
     term.nodes = {f[0], f[1], f[2]};
     const Obstacle& obstacle = (*obstacles_)[p.obstacle];
-    term.cost =
+    auto cost =
         std::make_unique<FaceObstacleGap>(&obstacle, p.feature, time, d_hat_, margin_,
                                           obstacle.FeatureRadius() > 0.0 ? &face_lag_[k] : nullptr);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->face_weights[p.face], kappa);
     potential->AddTerm(std::move(term));
   }
@@ -271,8 +273,10 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     term.family = family;
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
-    term.cost = std::make_unique<EdgeBoxEdgeGap>(&(*obstacles_)[p.obstacle], p.box_edge, time,
+    auto cost = std::make_unique<EdgeBoxEdgeGap>(&(*obstacles_)[p.obstacle], p.box_edge, time,
                                                  d_hat_, margin_);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->edge_weights[p.edge], kappa);
     potential->AddTerm(std::move(term));
   }
