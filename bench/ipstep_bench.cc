@@ -66,6 +66,10 @@ DEFINE_string(merge, "",
               "Comma-separated CSV files or glob patterns from sharded runs: merge them into "
               "--output (sorted by id) and exit");
 DEFINE_bool(dry_run, false, "List the configurations of this shard and exit");
+DEFINE_bool(interleave, false,
+            "Run the warm-up and timed runs of all configurations round-robin (run r of "
+            "every configuration before run r + 1 of any) instead of one configuration "
+            "after another; rows are written at the end");
 
 namespace ipstep {
 namespace bench {
@@ -258,48 +262,70 @@ int Run() {
   for (const SceneSetup& s : setups) {
     dt_min[{s.scene, s.grid_size}] = *std::min_element(s.dts.begin(), s.dts.end());
   }
-  for (const RunConfig& config : mine) {
+  // One run of a configuration; false once it needs no more (an incomplete run
+  // is not repeated).
+  auto run_once = [&](const RunConfig& config, int run, RunRow* row) {
     OptimizerSpec spec = specs.at(config.optimizer);
     spec.options.tolerance = config.tolerance;
-    RunRow row;
-    row.config = config;
-    row.shard = FLAGS_shard;
-    for (int run = 0; run < config.warmup + config.repeats; ++run) {
-      row.result = RunTrajectory(config, spec);
-      const bool complete = row.result.steps_done == config.steps;
-      if (run >= config.warmup || !complete) row.wall.push_back(row.result.loop_seconds);
-      if (!complete) break;  // error, divergence or timeout: not repeated
-    }
-    row.position_error = std::nan("");
-    row.reference_error = std::nan("");
-    row.reference_dt = std::nan("");
+    row->result = RunTrajectory(config, spec);
+    const bool complete = row->result.steps_done == config.steps;
+    if (run >= config.warmup || !complete) row->wall.push_back(row->result.loop_seconds);
+    return complete && run + 1 < config.warmup + config.repeats;
+  };
+  auto finish = [&](RunRow* row) {
+    const RunConfig& config = row->config;
+    row->position_error = std::nan("");
+    row->reference_error = std::nan("");
+    row->reference_dt = std::nan("");
     const double t_end = config.dt * config.steps;
-    if (FLAGS_errors && row.result.steps_done == config.steps) {
+    if (FLAGS_errors && row->result.steps_done == config.steps) {
       Eigen::VectorXd exact;
       if (config.integrator != "quasi_static" && ExactFinalPositions(config.scene, t_end, &exact)) {
-        row.reference = "exact";
-        row.reference_error = 0.0;
-        row.position_error =
-            MaxNodeError(row.result.final_x, exact, row.result.free_nodes, row.result.dimension);
+        row->reference = "exact";
+        row->reference_error = 0.0;
+        row->position_error =
+            MaxNodeError(row->result.final_x, exact, row->result.free_nodes, row->result.dimension);
       } else {
         const Reference& ref = references.Get(config.scene, config.grid_size, config.integrator,
                                               dt_min.at({config.scene, config.grid_size}), t_end);
-        row.reference = ref.description;
-        row.reference_dt = ref.dt;
-        row.reference_error = ref.error;
-        row.position_error =
-            MaxNodeError(row.result.final_x, ref.x, row.result.free_nodes, row.result.dimension);
+        row->reference = ref.description;
+        row->reference_dt = ref.dt;
+        row->reference_error = ref.error;
+        row->position_error =
+            MaxNodeError(row->result.final_x, ref.x, row->result.free_nodes, row->result.dimension);
       }
     }
-    out << CsvRow(row) << '\n' << std::flush;
+    out << CsvRow(*row) << '\n' << std::flush;
     std::fprintf(stderr,
                  "[%d] %s grid=%d %s %s dt=%.4g tol=%g: %.3f ms/step, %.2f it/step, "
                  "%d failed, error %.3g, %s\n",
                  config.id, config.scene.c_str(), config.grid_size, config.integrator.c_str(),
                  config.optimizer.c_str(), config.dt, config.tolerance,
-                 row.wall.empty() ? 0.0 : 1e3 * row.wall.back() / std::max(1, config.steps),
-                 static_cast<double>(row.result.iterations) / std::max(1, row.result.steps_done),
-                 row.result.failed_steps, row.position_error, row.result.status.c_str());
+                 row->wall.empty() ? 0.0 : 1e3 * row->wall.back() / std::max(1, config.steps),
+                 static_cast<double>(row->result.iterations) / std::max(1, row->result.steps_done),
+                 row->result.failed_steps, row->position_error, row->result.status.c_str());
+  };
+  std::vector<RunRow> rows(mine.size());
+  for (size_t i = 0; i < mine.size(); ++i) {
+    rows[i].config = mine[i];
+    rows[i].shard = FLAGS_shard;
+  }
+  if (FLAGS_interleave) {
+    // Round-robin: run r of every configuration before run r + 1 of any, so
+    // that a slow period of a shared machine hits all of them alike.
+    std::vector<bool> more(mine.size(), true);
+    for (int run = 0; std::find(more.begin(), more.end(), true) != more.end(); ++run) {
+      for (size_t i = 0; i < mine.size(); ++i) {
+        if (more[i]) more[i] = run_once(mine[i], run, &rows[i]);
+      }
+    }
+    for (RunRow& row : rows) finish(&row);
+  } else {
+    for (size_t i = 0; i < mine.size(); ++i) {
+      for (int run = 0; run_once(mine[i], run, &rows[i]); ++run) {
+      }
+      finish(&rows[i]);
+    }
   }
   return 0;
 }
