@@ -6,11 +6,15 @@
       convergence.{png,svg}     error vs dt with fitted order
       iterations.{png,svg}      iterations per step by optimiser
       energy_drift.{png,svg}    max relative energy drift vs dt
-  plot_benchmarks.py table RESULTS.csv [--baseline projected_newton]
+  plot_benchmarks.py table RESULTS.csv [--baseline projected_newton] [--time min]
       markdown: iterations, ms per step (and per iteration), failed steps, error,
       time ratio to the baseline optimiser of the same scene/grid/integrator/dt
-  plot_benchmarks.py scaling RESULTS.csv --out docs/img
+      (and tolerance, a column when there are several)
+  plot_benchmarks.py scaling RESULTS.csv --out docs/img [--time min]
       scaling.{png,svg} and a markdown table with fitted exponents
+
+--time: ms per step from the median of the timed runs (default) or from the
+fastest one (min: on a shared machine, the run least disturbed by others).
 
 Needs only matplotlib (Debian: python3-matplotlib) and the standard library.
 """
@@ -35,14 +39,19 @@ def number(text):
     return value
 
 
-def read(path):
+def read(path, time="median"):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     for r in rows:
         for key in ("dt", "tolerance", "wall_per_sim_s", "ms_per_step", "iterations_per_step",
                     "position_error", "energy_drift", "reference_error", "free_dofs",
-                    "failed_steps", "grid_size", "steps", "steps_done"):
+                    "failed_steps", "grid_size", "steps", "steps_done", "wall_s_median",
+                    "wall_s_min"):
             r[key] = number(r.get(key))
+        if time == "min" and r["wall_s_median"] > 0:
+            scale = r["wall_s_min"] / r["wall_s_median"]
+            r["ms_per_step"] *= scale
+            r["wall_per_sim_s"] *= scale
     return rows
 
 
@@ -212,10 +221,13 @@ def table(rows, baseline):
     for r in rows:
         if r["optimizer"] == baseline and r["steps_done"] == r["steps"]:
             base[(r["scene"], r["grid_size"], r["integrator"], r["dt"], r["tolerance"])] = r
-    print(f"| scene | DOFs | integrator | optimiser | iterations/step | ms/step | ms/iteration "
+    tolerances = len({r["tolerance"] for r in rows}) > 1
+    print(f"| scene | DOFs | integrator | optimiser |" + (" tolerance |" if tolerances else "") +
+          f" iterations/step | ms/step | ms/iteration "
           f"| × {baseline} (ms/step) | × {baseline} (iterations) | failed steps | worst residual "
           f"[m/s] | error [m] | status |")
-    print("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---:|---|---|" + ("---:|" if tolerances else "") +
+          "---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for r in rows:
         b = base.get((r["scene"], r["grid_size"], r["integrator"], r["dt"], r["tolerance"]))
         done = r["steps_done"] == r["steps"]
@@ -226,6 +238,7 @@ def table(rows, baseline):
                   if r["iterations_per_step"] > 0 else math.nan)
         status = r["status"] if len(r["status"]) < 60 else r["status"][:57] + "..."
         print(f'| {scene_name(r)} | {int(r["free_dofs"])} | {r["integrator"]} | {r["optimizer"]} '
+              + (f'| {fmt(r["tolerance"], "g")} ' if tolerances else '') +
               f'| {fmt(r["iterations_per_step"])} | {fmt(r["ms_per_step"])} | {fmt(per_it)} '
               f'| {fmt(ratio, ".2f")} | {fmt(iratio, ".2f")} | {int(r["failed_steps"])} '
               f'| {fmt(number(r["worst_residual"]), ".2g")} | {fmt(r["position_error"], ".2e")} '
@@ -266,8 +279,9 @@ def main():
     parser.add_argument("csv", nargs="+")
     parser.add_argument("--out", default="docs/img")
     parser.add_argument("--baseline", default="projected_newton")
+    parser.add_argument("--time", choices=["median", "min"], default="median")
     args = parser.parse_args()
-    rows = [r for path in args.csv for r in read(path)]
+    rows = [r for path in args.csv for r in read(path, args.time)]
     if not rows:
         sys.exit(f"{args.csv}: no rows")
     if args.mode == "work-precision":
