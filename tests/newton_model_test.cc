@@ -3,6 +3,7 @@
 // projection, what Ceres sees through NewtonModelCost, Ceres's first step
 // against the Eigen projected Newton direction, quadratic convergence, and
 // quasi-static convergence where Gauss-Newton has no lateral stiffness.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -12,6 +13,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
+#include "contact/barrier.h"
+#include "contact/contact_terms.h"
+#include "contact/friction.h"
 #include "core/term_hessian.h"
 #include "energies/hookean_spring.h"
 #include "energies/quartic_spring.h"
@@ -98,7 +102,9 @@ void ExpectModelHessianIsExact(const Term& term, int dim, const std::vector<std:
   TermModel model;
   ASSERT_TRUE(evaluator.Evaluate(term, dim, weight, Blocks(x).data(), true, &model)) << what;
   const TermMatrix reference = GradientDifferences(term, dim, weight, x, 1e-6);
-  const double scale = reference.cwiseAbs().maxCoeff();
+  // Relative to the Hessian, or to its Gauss-Newton part where the two
+  // second-order parts cancel (sliding friction's exact Hessian is zero).
+  const double scale = std::max(reference.cwiseAbs().maxCoeff(), model.gauss_newton_scale);
   ASSERT_GT(scale, 0.0) << what;
   EXPECT_LE((model.hessian - reference).cwiseAbs().maxCoeff(), relative_tolerance * scale)
       << what << "\nmodel\n"
@@ -170,6 +176,75 @@ TEST(TermHessian, AffineTermsKeepTheirExactGaussNewtonModel) {
       TermKind::kDissipation, {0}, builder.context(), 0, 3.0);
   EXPECT_TRUE(factory.last().gauss_newton_model);
   ExpectModelHessianIsExact(factory.last(), 2, x, 1e-8, "mass damping");
+}
+
+// Contact terms, losses included: a barrier against a sphere (analytic
+// curvature through BarrierLoss), friction against an obstacle in 2D (the
+// one-sided halves with their loss) and 3D, and 2D edge friction (finite
+// differences of their Jacobians).
+TEST(TermHessian, ContactTermsMatchFiniteDifferencesOfTheGradient) {
+  Obstacle sphere;
+  sphere.type = ObstacleType::kSphere;
+  sphere.dimension = 3;
+  sphere.radius = 0.5;
+  const double time = 0.0, kappa = 3e3;
+  {
+    Term term;
+    term.nodes = {0};
+    auto cost = std::make_unique<PointObstacleGap>(3, &sphere, &time, 0.1, 0.0);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
+    term.loss = std::make_unique<BarrierLoss>(0.1, 0.2, &kappa);
+    ExpectModelHessianIsExact(term, 3, {{0.3, 0.4, 0.2}}, 1e-6, "barrier, sphere");
+  }
+  // Friction: positions x at the velocity map's base, so v = v_base there;
+  // tangential speeds below eps_v (sticking) and above (sliding) on the side
+  // each one-sided half acts.
+  const double eps_v = 1e-2, c = kFrictionSpeedScale * eps_v;
+  const std::vector<std::vector<double>> x2 = {{0.1, 0.2}, {0.3, 0.41}, {0.52, 0.6}};
+  StepContext context;
+  context.Resize(2, 3);
+  context.velocity_slope = 50.0;
+  for (int b = 0; b < 3; ++b) context.x_base.segment<2>(2 * b) << x2[b][0], x2[b][1];
+  Eigen::Matrix3d tangents = Eigen::Matrix3d::Zero();
+  tangents.col(0) = Eigen::Vector3d(0.6, 0.8, 0);
+  for (int side : {1, -1}) {
+    for (double speed : {0.004, 0.05}) {
+      // Node 1 moves at side * speed along the tangent; nodes 0 and 2 rest.
+      context.v_base.setZero();
+      context.v_base.segment<2>(2) = side * speed * Eigen::Vector2d(0.6, 0.8);
+      Term term;
+      term.kind = TermKind::kDissipation;
+      term.nodes = {1};
+      term.cost = std::make_unique<ObstacleFriction>(&context, 1, tangents, Eigen::Vector3d::Zero(),
+                                                     eps_v, side, c);
+      term.loss = std::make_unique<OneSidedFrictionLoss>(4.0, c, eps_v);
+      ExpectModelHessianIsExact(term, 2, {x2[1]}, 1e-5, "2D obstacle friction");
+      Term edge;
+      edge.kind = TermKind::kDissipation;
+      edge.nodes = {1, 0, 2};
+      edge.cost = std::make_unique<EdgeFriction>(&context, 1, 0, 2, Eigen::Vector2d(0.6, 0.8), 0.3,
+                                                 side, c);
+      edge.loss = std::make_unique<OneSidedFrictionLoss>(4.0, c, eps_v);
+      ExpectModelHessianIsExact(edge, 2, {x2[1], x2[0], x2[2]}, 1e-5, "2D edge friction");
+    }
+  }
+  StepContext context3;
+  context3.Resize(3, 1);
+  context3.velocity_slope = 20.0;
+  Eigen::Matrix3d tangents3 = Eigen::Matrix3d::Zero();
+  tangents3.col(0) = Eigen::Vector3d(1, 0, 0);
+  tangents3.col(1) = Eigen::Vector3d(0, 0, 1);
+  for (double speed : {0.004, 0.05}) {  // sticking, sliding
+    context3.v_base << 0.6 * speed, 0.3, 0.8 * speed;
+    Term term;
+    term.kind = TermKind::kDissipation;
+    term.nodes = {0};
+    term.cost =
+        std::make_unique<ObstacleFriction>(&context3, 0, tangents3, Eigen::Vector3d::Zero(), eps_v);
+    term.loss = std::make_unique<FrictionLoss>(4.0);
+    ExpectModelHessianIsExact(term, 3, {{0.0, 0.0, 0.0}}, 1e-5, "3D obstacle friction");
+  }
 }
 
 TEST(TermHessian, ProjectionFloorsNegativeCurvatureAndKeepsPositiveDefiniteModels) {
