@@ -28,7 +28,7 @@ int ModelSize(const Term& term, int dimension) {
 }
 
 bool TermModelEvaluator::EvaluateJacobian(const Term& term, int dimension, bool pair,
-                                          double* residuals, TermMatrix* jacobian) {
+                                          double* residuals, std::vector<double>* jacobian) {
   const int blocks = static_cast<int>(term.nodes.size());
   const int m = term.cost->num_residuals();
   for (int b = 0; b < blocks; ++b) {
@@ -37,14 +37,16 @@ bool TermModelEvaluator::EvaluateJacobian(const Term& term, int dimension, bool 
         pair && b == 0 ? nullptr : jacobian_blocks_.data() + static_cast<size_t>(b) * m * dimension;
   }
   if (!term.cost->Evaluate(parameters_.data(), residuals, jacobian_pointers_.data())) return false;
-  // Row-major m x dimension blocks into the m x n model Jacobian.
+  // Row-major m x dimension blocks into the column-major m x n model Jacobian.
   const int first = pair ? 1 : 0;
-  jacobian->resize(m, dimension * (blocks - first));
+  jacobian->resize(static_cast<size_t>(m) * dimension * (blocks - first));
   for (int b = first; b < blocks; ++b) {
     const double* block = jacobian_pointers_[b];
     for (int r = 0; r < m; ++r) {
-      for (int k = 0; k < dimension; ++k)
-        (*jacobian)(r, (b - first) * dimension + k) = block[r * dimension + k];
+      for (int k = 0; k < dimension; ++k) {
+        (*jacobian)[static_cast<size_t>((b - first) * dimension + k) * m + r] =
+            block[r * dimension + k];
+      }
     }
   }
   return true;
@@ -79,21 +81,22 @@ bool TermModelEvaluator::Evaluate(const Term& term, int dimension, double weight
   }
   const bool pair = term.pair_difference;
   if (!EvaluateJacobian(term, dimension, pair, residuals_.data(), &jacobian_)) return false;
+  const int n = pair ? dimension : nt;
+  const Eigen::Map<const Eigen::MatrixXd> jacobian(jacobian_.data(), m, n);
   const Eigen::Map<const Eigen::VectorXd> r(residuals_.data(), m);
   const double s = r.squaredNorm();
   double rho[3] = {s, 1.0, 0.0};
   if (term.loss) term.loss->Evaluate(s, rho);
   model->energy = 0.5 * weight * rho[0];
-  const TermVector jtr = jacobian_.transpose() * r;
+  const TermVector jtr = jacobian.transpose() * r;
   model->gradient = (weight * rho[1]) * jtr;
-  model->hessian.noalias() = (weight * rho[1]) * jacobian_.transpose() * jacobian_;
+  model->hessian.noalias() = (weight * rho[1]) * jacobian.transpose() * jacobian;
   // Ceres's corrector keeps the rho'' part only where it is positive (else it
   // scales J by sqrt(rho')); a Gauss-Newton model is Ceres's model.
   const double rho2 = term.gauss_newton_model ? std::max(rho[2], 0.0) : rho[2];
   model->hessian.noalias() += (2.0 * weight * rho2) * jtr * jtr.transpose();
-  model->gauss_newton_scale = weight * rho[1] * jacobian_.squaredNorm();
+  model->gauss_newton_scale = weight * rho[1] * jacobian.squaredNorm();
   model->curvature_dropped = false;
-  const int n = static_cast<int>(jacobian_.cols());
   if (!term.gauss_newton_model && rho[1] != 0.0 && weight != 0.0) {
     curvature_.resize(n, n);
     bool ok = true;
@@ -111,11 +114,11 @@ bool TermModelEvaluator::Evaluate(const Term& term, int dimension, double weight
         coordinate = saved + step;
         const double up = coordinate;
         ok = EvaluateJacobian(term, dimension, pair, residuals_fd_.data(), &jacobian_fd_);
-        if (ok) column_.noalias() = jacobian_fd_.transpose() * r;
+        if (ok) column_.noalias() = FdJacobian(m, n).transpose() * r;
         coordinate = saved - step;
         const double down = coordinate;
         ok = ok && EvaluateJacobian(term, dimension, pair, residuals_fd_.data(), &jacobian_fd_);
-        if (ok) curvature_.col(j) = (column_ - jacobian_fd_.transpose() * r) / (up - down);
+        if (ok) curvature_.col(j) = (column_ - FdJacobian(m, n).transpose() * r) / (up - down);
         coordinate = saved;
       }
     }

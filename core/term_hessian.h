@@ -79,8 +79,10 @@ class TermModelEvaluator {
                 bool hessian, TermModel* model);
 
  private:
+  // Residuals and the column-major m x n model Jacobian into `jacobian`
+  // (resized to hold it; any residual count m).
   bool EvaluateJacobian(const Term& term, int dimension, bool pair, double* residuals,
-                        TermMatrix* jacobian);
+                        std::vector<double>* jacobian);
 
   std::vector<double> local_x_;
   std::vector<const double*> parameters_;
@@ -88,8 +90,12 @@ class TermModelEvaluator {
   std::vector<double> residuals_fd_;
   std::vector<double> jacobian_blocks_;
   std::vector<double*> jacobian_pointers_;
-  TermMatrix jacobian_;
-  TermMatrix jacobian_fd_;
+  Eigen::Map<const Eigen::MatrixXd> FdJacobian(int m, int n) const {
+    return Eigen::Map<const Eigen::MatrixXd>(jacobian_fd_.data(), m, n);
+  }
+
+  std::vector<double> jacobian_;
+  std::vector<double> jacobian_fd_;
   TermMatrix curvature_;
   TermVector column_;
 };

@@ -50,6 +50,22 @@ struct BendingLike {
   }
 };
 
+// More residuals than a term has parameters: 30 on two nodes.
+template <int kDim>
+struct ManyResiduals {
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* residual) const {
+    for (int k = 0; k < 30; ++k) {
+      const double angle = 0.37 * k;
+      T along = T(0.0);
+      for (int d = 0; d < kDim; ++d)
+        along += (d % 2 == 0 ? cos(angle) : sin(angle)) * (b[d] - a[d]);
+      residual[k] = along * along - 0.01 * k;
+    }
+    return true;
+  }
+};
+
 // Terms built through a TermBuilder on a throwaway scene of `nodes` nodes.
 struct TermFactory {
   TermFactory(int dimension, int nodes) : potential(dimension, nodes) {
@@ -166,6 +182,18 @@ TEST(TermHessian, FiniteDifferenceModelOfAUserFunctorIsExactToFiniteDifferences)
   EXPECT_FALSE(factory.last().pair_difference);
   EXPECT_FALSE(static_cast<bool>(factory.last().curvature));
   ExpectModelHessianIsExact(factory.last(), 2, x, 1e-6, "user functor (finite differences)");
+}
+
+TEST(TermHessian, TermsWithMoreResidualsThanParameters) {
+  const std::vector<std::vector<double>> x = {{0.1, -0.2, 0.3}, {0.7, 0.3, -0.5}};
+  for (int dim : {2, 3}) {
+    TermFactory factory(dim, 2);
+    TermBuilder builder = factory.builder();
+    builder.AddAutoDiff<ManyResiduals, 30, 2>(TermKind::kPotential, {0, 1});
+    std::vector<std::vector<double>> blocks = x;
+    for (auto& b : blocks) b.resize(dim);
+    ExpectModelHessianIsExact(factory.last(), dim, blocks, 1e-6, "30 residuals");
+  }
 }
 
 TEST(TermHessian, AffineTermsKeepTheirExactGaussNewtonModel) {
