@@ -62,6 +62,10 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--optimizer=lbfgs --line_search=ARMIJO", "flag", "--line_search");
   ExpectInputError("--optimizer=lbfgs --backtrack_rejected_steps=false", "flag",
                    "--backtrack_rejected_steps");
+  // projected_newton is neither Ceres family: both families' flags are errors.
+  ExpectInputError("--optimizer=projected_newton --sparse_library=CX_SPARSE", "flag",
+                   "--sparse_library");
+  ExpectInputError("--optimizer=projected_newton --lbfgs_rank=3", "flag", "--lbfgs_rank");
   ExpectInputError("--max_iterations=-1", "flag", "--max_iterations");
   ExpectInputError("--frame_every=0", "flag", "--frame_every");
   ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
@@ -137,11 +141,11 @@ TEST_F(ProgramInput, FailedStepStopsWithExitCodeThree) {
 }
 
 TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {
-  for (const char* scene : {"oscillator", "spring_pendulum", "cloth", "fpu"}) {
+  for (const char* scene : {"oscillator", "spring_pendulum", "cloth", "fpu", "hanging_square"}) {
     for (const char* integrator :
          {"backward_euler", "newmark", "quasi_static", "symplectic_euler"}) {
-      for (const char* optimizer :
-           {"newton", "dogleg", "lbfgs", "bfgs", "ncg", "gradient_descent"}) {
+      for (const char* optimizer : {"newton", "dogleg", "gauss_newton", "lbfgs", "bfgs", "ncg",
+                                    "gradient_descent", "projected_newton"}) {
         std::ostringstream args;
         args << "--scene=" << scene << " --integrator=" << integrator
              << " --optimizer=" << optimizer << " --steps=2 --on_failure=continue";
