@@ -6,8 +6,10 @@
 // e = 1/2 rho(|r|^2) (rho = identity without a loss). The step weight of the
 // family (StepContext::inertia_weight, potential_weight, dissipation_weight) is
 // applied on top: by WeightedCostFunction / WeightedLoss when the term is given to
-// a ceres::Problem, and directly by the evaluator (core/potential_evaluator.h).
-// So one definition serves every optimiser.
+// a ceres::Problem as it is (gauss_newton), by NewtonModelCost when its Newton
+// model is (newton, dogleg: solver/newton_model_cost.h), and directly by the
+// evaluators (IncrementalPotential, core/term_hessian.h). So one definition
+// serves every optimiser.
 #pragma once
 
 #include <functional>

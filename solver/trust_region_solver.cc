@@ -123,7 +123,7 @@ bool TrustRegionSolver::BacktrackRejectedStep() {
   // accepted iterate, which is also the filters' last accepted point.
   constexpr double kFilterFraction = 0.9;
   // A refused step is cut to the contact-safe fraction, which may be small
-  // for a long Gauss-Newton step; a step that raised the energy is searched
+  // for a long model step; a step that raised the energy is searched
   // down to about 1e-3 of its length only (10 halvings from <= 0.5): shorter
   // steps are left to Ceres's shrinking trust region, and near the precision
   // floor a longer search only finds round-off "decreases" (measured: before
@@ -131,15 +131,16 @@ bool TrustRegionSolver::BacktrackRejectedStep() {
   // Ceres at the same point until the iteration limit).
   const int max_halvings = rejected_vetoed_ ? 30 : 10;
   const Eigen::VectorXd& x = positions_;
-  // Without inertia (quasi-static) the Gauss-Newton model can be nearly
-  // singular (a body free to slide, gravity's tiny curvature): its steps are
-  // then poor directions, and the trust region's memory of a small radius is
-  // the better globalisation.
+  // Without inertia (quasi-static) the model can be nearly singular (a body
+  // free to slide, gravity's tiny curvature): its steps are then poor
+  // directions, and the trust region's memory of a small radius is the better
+  // globalisation (solver/trust_region_solver.h).
   if (!(potential_->context().inertia_weight > 0.0)) return false;
-  // Gauss-Newton steps that keep raising the energy (every restart's first
-  // step rejected again) are poor directions: after kMaxShortBacktracks such
+  // Model steps that keep raising the energy (every restart's first step
+  // rejected again) are poor directions: after kMaxShortBacktracks such
   // restarts in a row, leave them to the trust region, whose radius
-  // remembers. Measured on cloth_sphere --grid_size=40, first 80 steps:
+  // remembers. Measured with Gauss-Newton on cloth_sphere --grid_size=40,
+  // first 80 steps:
   // without this limit the restarts crawled at about 1 % per iteration (57
   // iterations per step, 14 failed); with 20: 25.8, 6 failed (the trust
   // region alone: 31.2, 6); 3 and 10 cost slope's stick-slip steps (1.53x and

@@ -1,44 +1,53 @@
-// newton and dogleg: the terms' cost functions in a ceres::Problem built once
+// newton, dogleg and gauss_newton: the terms in a ceres::Problem built once
 // per scene (one parameter block per node over a buffer that never
 // reallocates; constrained nodes constant) and solved with a trust region.
+// newton and dogleg hand Ceres each term's projected Newton model
+// (solver/newton_model_cost.h); gauss_newton gives it the terms' own cost
+// functions and losses, whose J^T J is Ceres's Gauss-Newton model. Terms whose
+// Gauss-Newton model is exact (Term::gauss_newton_model) are plain residual
+// blocks in all three.
 // The Problem is rebuilt only when the potential's terms change (e.g. contact).
 // Step filters see every trial point through a ceres::EvaluationCallback and
 // veto infeasible ones by failing the evaluation.
 //
 // Backtracking rejected steps (OptimizerOptions::backtrack_rejected_steps):
 // Ceres cannot shorten a step, only shrink its trust region, and from the
-// initial radius 1e16 (chosen so Levenberg-Marquardt takes exact Gauss-Newton
-// steps) it shrinks it by 2, 4, 8, ... on consecutive rejections: about ten
+// initial radius 1e16 (chosen so Levenberg-Marquardt takes full model steps)
+// it shrinks it by 2, 4, 8, ... on consecutive rejections: about ten
 // rejections before the radius bites. Two cases made that common:
-//  * a Gauss-Newton step that ignores a contact not yet within d_hat passes
-//    through the obstacle and a step filter refuses it;
+//  * a model step that ignores a contact not yet within d_hat passes through
+//    the obstacle and a step filter refuses it;
 //  * friction's stick-slip curvature changes over eps_v, so a Newton step
 //    across the transition raises the energy.
-// Measured on `slope` (tolerance 1e-6): first-contact steps took 41-45
-// iterations against 7 for the projected Newton reference. So when Ceres
-// rejects a trial point, an iteration callback backtracks along the rejected
-// step as a projected Newton line search would: from 0.9 of the filters'
-// largest feasible fraction (MaxStepSize, continuous collision detection) for
-// a refused point, from the minimiser of the quadratic through E(0), E'(0)
-// and E(1) (clamped to [0.1, 0.5]) for a point that raised the energy; halved
-// until the Armijo rule (1e-4) with a strict decrease holds, energies in
-// extended precision. The rejected point itself is tried first: Ceres
-// compares costs in double precision and near convergence rejects steps whose
-// decrease is below its cost sum's round-off (the precision floor: the 20x20
-// cloth stalled at about 2e-6 m/s; now it converges at 1e-8). The same
+// Measured with Gauss-Newton on `slope` (tolerance 1e-6): first-contact steps
+// took 41-45 iterations against 7 for the projected Newton reference. So when
+// Ceres rejects a trial point, an iteration callback backtracks along the
+// rejected step as a projected Newton line search would: from 0.9 of the
+// filters' largest feasible fraction (MaxStepSize, continuous collision
+// detection) for a refused point, from the minimiser of the quadratic through
+// E(0), E'(0) and E(1) (clamped to [0.1, 0.5]) for a point that raised the
+// energy; halved until the Armijo rule (1e-4) with a strict decrease holds,
+// energies in extended precision. The rejected point itself is tried first:
+// Ceres compares costs in double precision and near convergence rejects steps
+// whose decrease is below its cost sum's round-off (the precision floor: the
+// 20x20 cloth stalled at about 2e-6 m/s; now it converges at 1e-8). The same
 // search runs when Ceres ends a solve because a trial's cost equalled the
-// current one ("function tolerance"). If a
-// point is found, the callback ends the Ceres solve and the solver restarts
-// Ceres from it with a fresh trust region (iterations and evaluations add up
-// over restarts; the rejected iteration is the one that moved). Otherwise
-// Ceres goes on shrinking its radius, as it does after 20 restarts in a row
-// whose first step raised the energy again (poor Gauss-Newton directions).
-// Not for quasi-static steps (no inertia):
-// their Gauss-Newton model can be nearly singular (a falling cloth draped over
-// a sphere: steps of kilometres, each refused, each cut to a tiny advance;
-// cloth_sphere's first quasi-static step failed after 330 iterations instead
-// of converging in 79), and there the trust region's memory of a small radius
-// is the better globalisation.
+// current one ("function tolerance"). If a point is found, the callback ends
+// the Ceres solve and the solver restarts Ceres from it with a fresh trust
+// region (iterations and evaluations add up over restarts; the rejected
+// iteration is the one that moved). Otherwise Ceres goes on shrinking its
+// radius, as it does after 20 restarts in a row whose first step raised the
+// energy again (poor model directions; measured with Gauss-Newton, kept for
+// all models). With the Newton model the backtracking keeps newton at the
+// Eigen projected Newton's iteration counts (docs/benchmarks.md).
+// Not for quasi-static steps (no inertia): their model can be nearly singular
+// (a body free to move, with only gravity's tiny curvature: a falling cloth
+// draped over a sphere took steps of kilometres, each refused, each cut to a
+// tiny advance; cloth_sphere's first quasi-static step failed after 330
+// iterations instead of converging in 79 with Gauss-Newton), and there the
+// trust region's memory of a small radius is the better globalisation.
+// Measured again with the Newton model: backtracking quasi-static steps helped
+// two_squares and cloth_box, and made slope and cloth_sphere fail every step.
 #pragma once
 
 #include <memory>
