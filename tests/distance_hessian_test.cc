@@ -137,6 +137,17 @@ struct Scenario {
   std::string name;
 };
 
+// The gradient of the point-obstacle distance of scenario s (positions of
+// s.obstacle.dimension coordinates).
+Gradient PointDistanceGradient(const Scenario& s) {
+  const int dim = s.obstacle.dimension;
+  return [&s, dim](const Eigen::VectorXd& y) {
+    V g;
+    s.obstacle.Distance(Block(y, 0, dim), s.t, &g);
+    return Eigen::VectorXd(g.head(dim));
+  };
+}
+
 Scenario MakeScenario(ObstacleType type, int dimension, bool moving) {
   Scenario s;
   Obstacle& o = s.obstacle;
@@ -172,11 +183,7 @@ TEST(DistanceHessian, PointPlaneIsZero) {
       const V x = s.obstacle.point + s.obstacle.velocity * s.t + 2.0 * random.Direction(dim);
       Eigen::Matrix3d h;
       ASSERT_TRUE(ObstacleDistanceHessian(s.obstacle, x, s.t, &h));
-      const Gradient gradient = [&](const Eigen::VectorXd& y) {
-        V g;
-        s.obstacle.Distance(Block(y, 0, dim), s.t, &g);
-        return Eigen::VectorXd(g.head(dim));
-      };
+      const Gradient gradient = PointDistanceGradient(s);
       ExpectHessian(h.topLeftCorner(dim, dim), gradient, Stack({x}, dim), true, s.name);
     }
   }
@@ -191,11 +198,7 @@ TEST(DistanceHessian, PointSphere) {
       const V x = centre + random.Uniform(0.7, 1.5) * random.Direction(dim);
       Eigen::Matrix3d h;
       ASSERT_TRUE(ObstacleDistanceHessian(s.obstacle, x, s.t, &h));
-      const Gradient gradient = [&](const Eigen::VectorXd& y) {
-        V g;
-        s.obstacle.Distance(Block(y, 0, dim), s.t, &g);
-        return Eigen::VectorXd(g.head(dim));
-      };
+      const Gradient gradient = PointDistanceGradient(s);
       ExpectHessian(h.topLeftCorner(dim, dim), gradient, Stack({x}, dim), false, s.name);
     }
   }
@@ -236,11 +239,7 @@ TEST(DistanceHessian, PointBoxFaceEdgeCorner) {
         const V x = PointNearBox(s, outside, 0.6, &random);
         Eigen::Matrix3d h;
         ASSERT_TRUE(ObstacleDistanceHessian(s.obstacle, x, s.t, &h));
-        const Gradient gradient = [&](const Eigen::VectorXd& y) {
-          V g;
-          s.obstacle.Distance(Block(y, 0, dim), s.t, &g);
-          return Eigen::VectorXd(g.head(dim));
-        };
+        const Gradient gradient = PointDistanceGradient(s);
         // The distance is affine inside and in the face (side) regions.
         ExpectHessian(h.topLeftCorner(dim, dim), gradient, Stack({x}, dim), count <= 1,
                       s.name + " axes outside " + std::to_string(count));

@@ -409,6 +409,23 @@ TEST(NewtonModel, CeresFirstStepEqualsTheEigenProjectedNewtonDirection) {
   }
 }
 
+// n nodes of `mass` on the x axis, `spacing` apart and at rest, joined by
+// Hookean springs k = 100 of rest length `rest_length`; no pins, no effects.
+Scene HorizontalChain(const char* name, int n, double spacing, double rest_length, double mass) {
+  Scene scene;
+  scene.name = scene.source = name;
+  for (int i = 0; i < n; ++i) {
+    scene.positions.push_back(spacing * i);
+    scene.positions.push_back(0.0);
+    scene.masses.push_back(mass);
+  }
+  scene.velocities.assign(2 * n, 0.0);
+  for (int i = 0; i + 1 < n; ++i) {
+    scene.springs.push_back(Spring{i, i + 1, SpringModel::kHookean, 100.0, rest_length});
+  }
+  return scene;
+}
+
 // Residual sequence of one step.
 std::vector<double> Residuals(const Scene& scene, const SimulationOptions& options,
                               StepReport* report) {
@@ -423,19 +440,9 @@ std::vector<double> Residuals(const Scene& scene, const SimulationOptions& optio
 // definite, nothing is projected) pulled sideways: Newton converges
 // quadratically, Gauss-Newton linearly.
 TEST(NewtonModel, QuadraticConvergenceOnASmoothConvexStep) {
-  Scene scene;
-  scene.name = scene.source = "stretched_chain";
   const int n = 8;
-  for (int i = 0; i < n; ++i) {
-    scene.positions.push_back(1.2 * i);
-    scene.positions.push_back(0.0);
-    scene.masses.push_back(0.01);
-  }
-  scene.velocities.assign(2 * n, 0.0);
+  Scene scene = HorizontalChain("stretched_chain", n, 1.2, 1.0, 0.01);
   for (int i = 1; i + 1 < n; ++i) scene.velocities[2 * i + 1] = 30.0 * std::sin(0.9 * i);
-  for (int i = 0; i + 1 < n; ++i) {
-    scene.springs.push_back(Spring{i, i + 1, SpringModel::kHookean, 100.0, 1.0});
-  }
   scene.pinned = {0, n - 1};
   scene.effects = {"springs"};
   StepReport report;
@@ -463,18 +470,8 @@ TEST(NewtonModel, QuadraticConvergenceOnASmoothConvexStep) {
 // Its lateral stiffness is purely geometric (tension / length), which
 // Gauss-Newton drops; the Newton model has it.
 TEST(NewtonModel, QuasiStaticNewtonConvergesOnAChainAndOnTheCloth) {
-  Scene chain;
-  chain.name = chain.source = "horizontal_chain";
   const int n = 21;
-  for (int i = 0; i < n; ++i) {
-    chain.positions.push_back(0.05 * i);
-    chain.positions.push_back(0.0);
-    chain.masses.push_back(0.1 / n);
-  }
-  chain.velocities.assign(2 * n, 0.0);
-  for (int i = 0; i + 1 < n; ++i) {
-    chain.springs.push_back(Spring{i, i + 1, SpringModel::kHookean, 100.0, 0.05});
-  }
+  Scene chain = HorizontalChain("horizontal_chain", n, 0.05, 0.05, 0.1 / n);
   chain.pinned = {0};
   chain.gravity = {0.0, -9.81};
   chain.effects = {"gravity", "springs"};
