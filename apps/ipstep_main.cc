@@ -1,7 +1,7 @@
 // ipstep: runs one scene with one integrator and one optimiser.
 //   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
 // Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed with
-// --on_failure=stop.
+// --on_failure=stop, or also as substeps with --on_failure=substep.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +10,7 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include "apps/command_line.h"
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/solver_flags.h"
@@ -19,8 +20,11 @@
 #include "problems/scene_loader.h"
 #include "sim/simulation.h"
 
-DEFINE_string(on_failure, "stop",
-              "When a step's optimizer does not converge: stop (exit code 3) or continue");
+DEFINE_string(on_failure, "substep",
+              "When a step fails (not converged, energy growth, penetration, non-finite): "
+              "substep (retry it from its start as 2, 4, ... substeps up to --max_substeps, then "
+              "stop with exit code 3 if it still fails), stop (exit code 3) or continue");
+DEFINE_int32(max_substeps, 16, "--on_failure=substep: the most substeps a step is retried as");
 DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
@@ -32,11 +36,19 @@ namespace ipstep {
 namespace {
 
 int Run() {
-  const SimulationOptions options = SimulationOptionsFromFlags();
-  if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
+  SimulationOptions options = SimulationOptionsFromFlags();
+  if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue" &&
+      FLAGS_on_failure != "substep") {
     throw InputError("flag", "--on_failure",
-                     "must be 'stop' or 'continue', got '" + FLAGS_on_failure + "'");
+                     "must be 'substep', 'stop' or 'continue', got '" + FLAGS_on_failure + "'");
   }
+  if (FLAGS_max_substeps < 2 || FLAGS_max_substeps > 1024) {
+    throw InputError("flag", "--max_substeps", "must be in [2, 1024]");
+  }
+  if (!FlagIsDefault("max_substeps") && FLAGS_on_failure != "substep") {
+    throw InputError("flag", "--max_substeps", "applies to --on_failure=substep only");
+  }
+  options.max_substeps = FLAGS_on_failure == "substep" ? FLAGS_max_substeps : 1;
   if (FLAGS_frame_every < 1) throw InputError("flag", "--frame_every", "must be >= 1");
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
   CheckContactFlagsApply(scene);
@@ -73,7 +85,7 @@ int Run() {
   const EnergyReport e0 = sim.Energies();
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
-  int failures = 0;
+  int failures = 0, substepped = 0;
   long total_iterations = 0;
   double solve_seconds = 0.0;
   bool progress_shown = false;
@@ -86,14 +98,20 @@ int Run() {
     if (frames && step % FLAGS_frame_every == 0) frames->Write(sim.state(), step);
     VLOG(1) << "step " << step << " t=" << r.time << " iterations=" << r.iterations
             << " residual=" << r.residual << " E=" << r.energies.total() << " " << r.status;
+    if (r.converged && r.substeps > 1) {
+      ++substepped;
+      std::fprintf(stderr, "%sstep %d (t = %g): %s; converged as %d substeps\n",
+                   progress_shown ? "\n" : "", step, r.time, r.retry_reason.c_str(), r.substeps);
+      progress_shown = false;
+    }
     if (!r.converged) {
       ++failures;
       std::fprintf(stderr, "%sstep %d (t = %g): %s after %d iterations, residual %.3g m/s\n",
                    progress_shown ? "\n" : "", step, r.time, r.status.c_str(), r.iterations,
                    r.residual);
       progress_shown = false;
-      if (FLAGS_on_failure == "stop") {
-        std::fprintf(stderr, "stopping (--on_failure=stop)\n");
+      if (FLAGS_on_failure != "continue") {
+        std::fprintf(stderr, "stopping (--on_failure=%s)\n", FLAGS_on_failure.c_str());
         if (!FLAGS_positions.empty())
           WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
         return kStepFailureExitCode;
@@ -112,8 +130,9 @@ int Run() {
   if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
   const EnergyReport e1 = sim.Energies();
   const int n = std::max(1, sim.steps());
-  std::printf("done: %d steps, %d failed, %.2f iterations/step, %.3f ms/step\n", sim.steps(),
-              failures, static_cast<double>(total_iterations) / n, 1e3 * solve_seconds / n);
+  std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step\n",
+              sim.steps(), failures, substepped, static_cast<double>(total_iterations) / n,
+              1e3 * solve_seconds / n);
   std::printf("energy: initial %.10g J, final %.10g J (kinetic %.6g, potential %.6g)\n", e0.total(),
               e1.total(), e1.kinetic, e1.potential);
   return 0;

@@ -47,6 +47,9 @@ DEFINE_bool(precise_energy, true,
             "force imbalances; costs one extra energy pass per evaluation)");
 DEFINE_double(newmark_beta, 0.25, "Newmark beta, in (0, 1]");
 DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in (0, 1]");
+DEFINE_double(energy_tolerance, 0.1,
+              "A step whose energy grows by more than this fraction of the energy in motion "
+              "fails with status 'energy growth' (variational integrators); 0: no check");
 DEFINE_int32(grid_size, 0, "Override the node count per side of a scene's grid; 0: the scene's");
 
 namespace ipstep {
@@ -104,6 +107,11 @@ SimulationOptions SimulationOptionsFromFlags() {
     throw InputError("flag", "--dt", "must be a finite number > 0 (0: the scene's time_step)");
   }
   if (FLAGS_steps < -1) throw InputError("flag", "--steps", "must be >= 0 (-1: the scene's steps)");
+  if (!std::isfinite(FLAGS_energy_tolerance) || FLAGS_energy_tolerance < 0.0 ||
+      FLAGS_energy_tolerance > 100.0) {
+    throw InputError("flag", "--energy_tolerance", "must be in [0, 100] (0: no check)");
+  }
+  o.energy_tolerance = FLAGS_energy_tolerance;
   o.time_step = FLAGS_dt;
   o.steps = FLAGS_steps;
   return o;

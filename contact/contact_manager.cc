@@ -711,6 +711,10 @@ void ContactManager::BeginStep(const double* x_n) {
   t_n_ = state_->time;
   t_next_ = t_n_ + context_->time_step;
   tau_ = t_n_;
+  // The barrier energy at x_n before and after this step's stiffness and pairs
+  // (for the energy balance: PrescribedWork).
+  double energy_before = 0.0;
+  const bool before_ok = BarrierEnergy(x_n, t_n_, &energy_before);
   OnAccepted(x_n);
   UpdateKappa(x_n);
 
@@ -756,6 +760,40 @@ void ContactManager::BeginStep(const double* x_n) {
     RebuildBarrierTerms();
   }
   RebuildFrictionTerms();
+  double energy_after = 0.0;
+  begin_energy_input_ =
+      before_ok && BarrierEnergy(x_n, t_n_, &energy_after) ? energy_after - energy_before : 0.0;
+}
+
+bool ContactManager::BarrierEnergy(const double* x, double t, double* energy) {
+  const double saved_tau = tau_;
+  tau_ = t;
+  const bool ok = potential_->EvaluateUnweighted(
+      [](const Term& term) { return term.family == kContactFamily; }, x, energy, nullptr);
+  tau_ = saved_tau;
+  return ok;
+}
+
+double ContactManager::PrescribedWork(const double* x_start, const double* x_end) {
+  if (!has_moving_obstacles_ || !(t_next_ > t_n_)) return begin_energy_input_;
+  const double h = t_next_ - t_n_, delta = 1e-6 * h;
+  // dU_b/dt at fixed positions by central differences in the obstacle time.
+  const auto rate = [&](const double* x, double t, double* value) {
+    double up = 0.0, down = 0.0;
+    if (!BarrierEnergy(x, t + delta, &up) || !BarrierEnergy(x, t - delta, &down)) return false;
+    *value = (up - down) / (2.0 * delta);
+    return true;
+  };
+  double at_start = 0.0, at_end = 0.0;
+  const bool start_ok = rate(x_start, t_n_, &at_start);
+  const bool end_ok = rate(x_end, t_next_, &at_end);
+  double work = 0.0;
+  if (start_ok && end_ok) {
+    work = 0.5 * h * (at_start + at_end);
+  } else if (start_ok || end_ok) {
+    work = h * (start_ok ? at_start : at_end);
+  }
+  return begin_energy_input_ + work;
 }
 
 bool ContactManager::RefreshTerms(const double* x) {

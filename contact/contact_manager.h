@@ -109,6 +109,16 @@ class ContactManager : public StepFilter {
   bool RefreshTerms(const double* x) override;
   std::vector<std::string> DiagnosticNames() const override;
   std::vector<double> Diagnostics(const double* x) const override;
+  // What this filter put into the barrier energy over the step: at BeginStep,
+  // the change of U_b(x_n, t_n) by the step's stiffness and pairs (adaptive
+  // kappa, pairs coming into reach); then the moving obstacles' work on the
+  // body, the integral of dU_b/dt (the barrier energy's rate at fixed
+  // positions, central differences in the obstacle time) along the step by
+  // the trapezoidal rule between (x_start, t_n) and (x_end, t_{n+1}) (one end
+  // if the other cannot be evaluated).
+  double PrescribedWork(const double* x_start, const double* x_end) override;
+  // U_b (the barrier terms' energy) at positions x and obstacle time t.
+  bool BarrierEnergy(const double* x, double t, double* energy);
 
   // Smallest gap over pairs closer than `reach` at the current obstacle time
   // (infinity if none).
@@ -236,6 +246,7 @@ class ContactManager : public StepFilter {
   double t_n_ = 0.0;
   double t_next_ = 0.0;
   double tau_ = 0.0;
+  double begin_energy_input_ = 0.0;  // PrescribedWork
   Eigen::VectorXd accepted_;
 
   std::vector<ObstaclePair> obstacle_pairs_;           // sorted

@@ -41,16 +41,33 @@ bool ComputeAccelerations(IncrementalPotential* potential, const State& s,
 }
 
 bool ComputeEnergies(const IncrementalPotential& potential, const State& s,
-                     const Eigen::VectorXd& gravity, bool has_inertia, EnergyReport* report) {
-  double u = 0.0;
-  if (!potential.EvaluateUnweighted(
-          [](const Term& t) { return t.kind == TermKind::kPotential && !IsGravityTerm(t); },
-          s.x.data(), &u, nullptr)) {
-    return false;
-  }
+                     const Eigen::VectorXd& gravity, bool has_inertia, double impulsive_factor,
+                     EnergyReport* report, Eigen::VectorXd* gradient) {
   const int dim = s.dimension;
+  double u = 0.0;
+  Eigen::VectorXd part;
+  if (gradient != nullptr) {
+    gradient->setZero(s.num_dofs());
+    part.resize(s.num_dofs());
+  }
+  // The smooth potentials, then the impulsive ones with their factor.
+  for (const bool impulsive : {false, true}) {
+    double e = 0.0;
+    if (!potential.EvaluateUnweighted(
+            [impulsive](const Term& t) {
+              return t.kind == TermKind::kPotential && !IsGravityTerm(t) &&
+                     t.impulsive == impulsive;
+            },
+            s.x.data(), &e, gradient != nullptr ? part.data() : nullptr)) {
+      return false;
+    }
+    const double factor = impulsive ? impulsive_factor : 1.0;
+    u += factor * e;
+    if (gradient != nullptr) *gradient += factor * part;
+  }
   for (int i = 0; i < s.num_nodes(); ++i) {
     u -= s.mass[i] * gravity.dot(s.x.segment(dim * i, dim));
+    if (gradient != nullptr) gradient->segment(dim * i, dim) -= s.mass[i] * gravity;
   }
   report->potential = u;
   report->kinetic = has_inertia ? s.KineticEnergy() : 0.0;

@@ -28,9 +28,14 @@ struct EnergyReport {
   double total() const { return kinetic + potential; }
 };
 
-// Kinetic energy (0 when `has_inertia` is false) and potential energy.
+// Kinetic energy (0 when `has_inertia` is false) and potential energy, the
+// impulsive potential terms (Term::impulsive: the contact barrier) counted
+// `impulsive_factor` times (Integrator::impulsive_energy_factor). With
+// `gradient` (not null): the gradient of the potential energy, gravity's
+// -m g included, on every node.
 bool ComputeEnergies(const IncrementalPotential& potential, const State& state,
-                     const Eigen::VectorXd& gravity, bool has_inertia, EnergyReport* report);
+                     const Eigen::VectorXd& gravity, bool has_inertia, double impulsive_factor,
+                     EnergyReport* report, Eigen::VectorXd* gradient = nullptr);
 
 // Rayleigh dissipation function R(v) at the context's current velocity map,
 // evaluated at positions x (unweighted).

@@ -17,7 +17,13 @@
 //   RefreshTerms(x)    after each solve of a step; return true if the filter
 //                      changed the potential's terms (e.g. the contact set grew
 //                      or friction was re-lagged): the step is solved again from x;
-//   Diagnostics        named per-step values for the --stats CSV (NaN: empty).
+//   Diagnostics        named per-step values for the --stats CSV (NaN: empty);
+//   PrescribedWork     energy the filter's own prescribed motions (e.g. moving
+//                      obstacles) put into the potential over the step from
+//                      x_start at the step's start time to x_end at its end,
+//                      for the step's energy balance (sim/energy_balance.h),
+//                      in units of its (impulsive, Term::impulsive) terms'
+//                      energy, which the balance scales like those terms.
 #pragma once
 
 #include <string>
@@ -39,6 +45,7 @@ class StepFilter {
   virtual std::vector<std::string> DiagnosticNames() const { return {}; }
   // Values in the order of DiagnosticNames(), at state positions x.
   virtual std::vector<double> Diagnostics(const double* /*x*/) const { return {}; }
+  virtual double PrescribedWork(const double* /*x_start*/, const double* /*x_end*/) { return 0.0; }
 };
 
 }  // namespace ipstep

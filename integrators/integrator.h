@@ -44,6 +44,10 @@ class Integrator {
   // terms, the contact barrier and friction: -grad of their weighted energy / w_U).
   // Only integrators that return true from separates_impulses() are given them.
   virtual bool separates_impulses() const { return false; }
+  // The share of an impulsive potential (the contact barrier) that the scheme
+  // stores as energy: 1, or Newmark's effective barrier stiffness 2 beta kappa
+  // (integrators/newmark.h). Energy reports and the energy balance use it.
+  virtual double impulsive_energy_factor() const { return 1.0; }
   virtual void UpdateWithImpulses(const Eigen::VectorXd& x_next,
                                   const Eigen::VectorXd& /*impulsive_forces*/, double h,
                                   State* state) const {

@@ -41,6 +41,10 @@ class Newmark : public Integrator {
   // (docs/contact.md). The friction terms' velocity map matches v_{n+1} for
   // gamma = 2 beta.
   bool separates_impulses() const override { return true; }
+  // The impulse 2 beta h f_c with the position change beta h^2 f_c is the
+  // trapezoidal rule with the contact force at the end point only: a barrier
+  // of stiffness kappa acts as one of 2 beta kappa, and stores that energy.
+  double impulsive_energy_factor() const override { return 2.0 * beta_; }
   void UpdateWithImpulses(const Eigen::VectorXd& x_next, const Eigen::VectorXd& impulsive_forces,
                           double h, State* state) const override;
 

@@ -21,7 +21,7 @@ StatsWriter::StatsWriter(const std::string& path, const std::string& flag,
                          const std::vector<std::string>& diagnostic_names)
     : out_(OpenForWriting(path, flag)) {
   out_ << "step,time,iterations,evaluations,converged,status,wall_seconds,kinetic_energy,"
-          "potential_energy,total_energy,residual";
+          "potential_energy,total_energy,residual,substeps,energy_growth";
   for (const std::string& name : diagnostic_names) out_ << ',' << name;
   out_ << '\n';
 }
@@ -30,7 +30,7 @@ void StatsWriter::Write(const StepReport& r) {
   out_ << r.step << ',' << r.time << ',' << r.iterations << ',' << r.evaluations << ','
        << (r.converged ? 1 : 0) << ",\"" << r.status << "\"," << r.wall_seconds << ','
        << r.energies.kinetic << ',' << r.energies.potential << ',' << r.energies.total() << ','
-       << r.residual;
+       << r.residual << ',' << r.substeps << ',' << r.energy_growth;
   for (double value : r.diagnostics) {
     out_ << ',';
     if (std::isfinite(value)) out_ << value;

@@ -1,13 +1,18 @@
 #include "sim/simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+
+#include <glog/logging.h>
 
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "energies/inertia.h"
 #include "energies/term_builder.h"
+#include "sim/energy_balance.h"
 
 namespace ipstep {
 
@@ -89,10 +94,9 @@ void Simulation::ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const {
   state_.PrescribedPositions(t, x);
 }
 
-void Simulation::SolveStep(Eigen::VectorXd* x, StepReport* report) {
-  const double t_next = state_.time + time_step_;
+void Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
+  const double t_next = state_.time + h;
   if (potential_->has_step_filters()) {
-    for (const auto& filter : potential_->step_filters()) filter->BeginStep(state_.x.data());
     // Start from a feasible point: free nodes move from x_n towards the guess only
     // as far as continuous collision detection allows (with a safety factor).
     Eigen::VectorXd start = state_.x;
@@ -184,7 +188,8 @@ void Simulation::set_iteration_sink(IterationSink sink) {
 
 EnergyReport Simulation::Energies() const {
   EnergyReport report;
-  if (!ComputeEnergies(*potential_, state_, gravity_, integrator_->has_inertia(), &report)) {
+  if (!ComputeEnergies(*potential_, state_, gravity_, integrator_->has_inertia(),
+                       integrator_->impulsive_energy_factor(), &report)) {
     report.kinetic = report.potential = std::nan("");
   }
   return report;
@@ -193,15 +198,73 @@ EnergyReport Simulation::Energies() const {
 StepReport Simulation::Step() {
   const auto start = std::chrono::steady_clock::now();
   const double h = time_step_;
-  const double t_next = state_.time + h;
-  const int dim = state_.dimension;
   StepReport report;
   report.step = ++steps_taken_;
+  const State saved = state_;
+  const double saved_growth = run_energy_growth_, saved_scale = run_energy_scale_,
+               saved_floor = run_energy_floor_;
+  Advance(h, &report);
+  if (!report.converged && options_.max_substeps > 1) report.retry_reason = report.status;
+  // Retry a failed step as 2, 4, ... substeps from the same start.
+  for (int substeps = 2; !report.converged && substeps <= options_.max_substeps; substeps *= 2) {
+    state_ = saved;
+    run_energy_growth_ = saved_growth;
+    run_energy_scale_ = saved_scale;
+    run_energy_floor_ = saved_floor;
+    const double h_sub = h / substeps;
+    integrator_->SetWeights(h_sub, &potential_->context());
+    StepReport attempt;
+    for (int k = 0; k < substeps && attempt.converged; ++k) {
+      StepReport sub;
+      Advance(h_sub, &sub);
+      attempt.converged = sub.converged;
+      attempt.status = sub.status;
+      attempt.residual = sub.residual;
+      attempt.iterations += sub.iterations;
+      attempt.evaluations += sub.evaluations;
+      attempt.energy_growth += sub.energy_growth;
+    }
+    integrator_->SetWeights(h, &potential_->context());
+    report.iterations += attempt.iterations;
+    report.evaluations += attempt.evaluations;
+    report.converged = attempt.converged;
+    report.residual = attempt.residual;
+    report.energy_growth = attempt.energy_growth;
+    report.substeps = substeps;
+    report.status = attempt.converged
+                        ? "converged"
+                        : attempt.status + " (also with " + std::to_string(substeps) + " substeps)";
+  }
+  state_.time = saved.time + h;
+  report.time = state_.time;
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.energies = Energies();
+  for (const auto& filter : potential_->step_filters()) {
+    for (double value : filter->Diagnostics(state_.x.data())) report.diagnostics.push_back(value);
+  }
+  return report;
+}
+
+void Simulation::Advance(double h, StepReport* report) {
+  const double t_next = state_.time + h;
+  const int dim = state_.dimension;
   Eigen::VectorXd x;
   integrator_->Predict(state_, gravity_, h, &potential_->context(), &x);
-  if (integrator_->is_variational()) {
+  const bool variational = integrator_->is_variational();
+  // The energy balance starts before the filters' BeginStep, which report
+  // what they change (PrescribedWork): sim/energy_balance.h.
+  const bool check_energy = variational && options_.energy_tolerance > 0.0;
+  const bool prescribed_motion = state_.prescribed_velocity.squaredNorm() > 0.0;
+  EnergyPoint energy_start;
+  const bool measured_start =
+      check_energy &&
+      MeasureEnergy(*potential_, state_, gravity_, integrator_->has_inertia(),
+                    integrator_->impulsive_energy_factor(), prescribed_motion, &energy_start);
+  if (variational) {
     ApplyBoundaryConditions(t_next, &x);
-    SolveStep(&x, &report);
+    for (const auto& filter : potential_->step_filters()) filter->BeginStep(state_.x.data());
+    SolveStep(h, &x, report);
     Eigen::VectorXd impulsive_forces;
     if (integrator_->separates_impulses() && ImpulsiveForces(x, &impulsive_forces)) {
       integrator_->UpdateWithImpulses(x, impulsive_forces, h, &state_);
@@ -211,8 +274,8 @@ StepReport Simulation::Step() {
   } else {
     Eigen::VectorXd forces;
     if (!ComputeForces(potential_.get(), state_, gravity_, &forces)) {
-      report.converged = false;
-      report.status = "forces cannot be evaluated";
+      report->converged = false;
+      report->status = "forces cannot be evaluated";
     } else {
       integrator_->Advance(forces, h, &state_);
     }
@@ -224,8 +287,8 @@ StepReport Simulation::Step() {
   if (potential_->has_step_filters()) {
     potential_->NotifyAccepted(state_.x.data());
     if (!potential_->IsFeasible(state_.x.data())) {
-      report.converged = false;
-      report.status = "infeasible state after the step (penetration)";
+      report->converged = false;
+      report->status = "infeasible state after the step (penetration)";
     }
   }
   for (int i = 0; i < state_.num_nodes(); ++i) {
@@ -234,18 +297,52 @@ StepReport Simulation::Step() {
     state_.a.segment(dim * i, dim).setZero();
   }
   state_.time = t_next;
-  if (report.converged && !(state_.x.allFinite() && state_.v.allFinite())) {
-    report.converged = false;
-    report.status = "non-finite state";
+  // The step that produces a non-finite number fails, whatever the integrator.
+  const EnergyReport energies = Energies();
+  if (report->converged && !(state_.x.allFinite() && state_.v.allFinite())) {
+    report->converged = false;
+    report->status = "non-finite state";
+  } else if (report->converged && !std::isfinite(energies.total())) {
+    report->converged = false;
+    report->status = "non-finite energy";
   }
-  report.time = state_.time;
-  report.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report.energies = Energies();
+  if (!measured_start || !report->converged) return;
+  EnergyPoint energy_end;
+  if (!MeasureEnergy(*potential_, state_, gravity_, integrator_->has_inertia(),
+                     integrator_->impulsive_energy_factor(), prescribed_motion, &energy_end)) {
+    return;
+  }
+  double filter_work = 0.0;
   for (const auto& filter : potential_->step_filters()) {
-    for (double value : filter->Diagnostics(state_.x.data())) report.diagnostics.push_back(value);
+    // Filters' terms are impulsive (contact): counted with the integrator's factor.
+    filter_work += integrator_->impulsive_energy_factor() *
+                   filter->PrescribedWork(energy_start.x.data(), energy_end.x.data());
   }
-  return report;
+  const EnergyBalance balance =
+      BalanceOf(energy_start, energy_end, state_, filter_work, options_.optimizer.tolerance / h);
+  report->energy_growth = balance.growth();
+  VLOG(2) << "energy balance: " << balance.Describe() << " start " << balance.start << " end "
+          << balance.end << " work " << balance.work << " floor " << balance.floor;
+  // Per step, and over the run: energy created a little at a time, each step
+  // under the tolerance, adds up to the same.
+  const double run_scale = std::max(run_energy_scale_, balance.scale);
+  const double run_growth = run_energy_growth_ + balance.growth();
+  const double run_floor = run_energy_floor_ + balance.floor;
+  if (balance.Exceeds(options_.energy_tolerance)) {
+    report->converged = false;
+    report->status = balance.Describe();
+  } else if (run_growth > options_.energy_tolerance * run_scale + run_floor) {
+    report->converged = false;
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "energy growth over the run: %+.3g J (%.3g %% of the largest energy in motion, "
+                  "%.3g J)",
+                  run_growth, 100.0 * run_growth / run_scale, run_scale);
+    report->status = text;
+  }
+  run_energy_scale_ = run_scale;
+  run_energy_growth_ = run_growth;
+  run_energy_floor_ = run_floor;
 }
 
 }  // namespace ipstep

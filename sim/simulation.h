@@ -22,6 +22,13 @@ struct SimulationOptions {
   OptimizerOptions optimizer;
   double time_step = 0.0;  // [s]; 0: the scene's time_step
   int steps = -1;          // -1: the scene's steps
+  // Energy balance (sim/energy_balance.h), variational integrators: a step
+  // whose energy grows by more than this fraction of the energy in motion
+  // fails with status "energy growth". 0: no check.
+  double energy_tolerance = 0.1;
+  // A failed step is retried from its start as 2, 4, ... substeps, up to this
+  // many (1: no retry); the run then continues at the scene's step.
+  int max_substeps = 1;
 };
 
 struct StepReport {
@@ -32,7 +39,10 @@ struct StepReport {
   int iterations = 0;
   int evaluations = 0;
   double wall_seconds = 0.0;
-  double residual = 0.0;  // stopping measure [m/s]
+  double residual = 0.0;       // stopping measure [m/s]
+  int substeps = 1;            // 1, or the substeps of a retried step
+  std::string retry_reason;    // a retried step: the status of its first attempt
+  double energy_growth = 0.0;  // E_{n+1} - E_n - W [J] (sim/energy_balance.h); 0 unchecked
   EnergyReport energies;
   std::vector<double> diagnostics;  // values of Simulation::DiagnosticNames()
 };
@@ -79,7 +89,9 @@ class Simulation {
   void BuildState();
   void BuildPotential();
   void ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const;
-  void SolveStep(Eigen::VectorXd* x, StepReport* report);
+  // One step of h from the state (Step: h, or a substep of it).
+  void Advance(double h, StepReport* report);
+  void SolveStep(double h, Eigen::VectorXd* x, StepReport* report);
   // Forces of the impulsive terms (Term::impulsive) at x, -grad E_impulsive / w_U;
   // false when there are none (or they cannot be evaluated).
   bool ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const;
@@ -95,6 +107,11 @@ class Simulation {
   std::unique_ptr<IncrementalPotential> potential_;
   std::unique_ptr<StepSolver> solver_;
   std::vector<std::string> effect_summaries_;
+  // Energy balance over the run (sim/energy_balance.h): the sum of the
+  // steps' growth and floors, and the largest energy in motion of any step.
+  double run_energy_growth_ = 0.0;
+  double run_energy_scale_ = 0.0;
+  double run_energy_floor_ = 0.0;
 };
 
 }  // namespace ipstep
