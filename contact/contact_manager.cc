@@ -504,9 +504,15 @@ void ContactManager::RebuildBarrierTerms() {
     term.family = kContactFamily;
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
-    auto cost =
-        std::make_unique<EdgeObstacleGap>(dim_, &options_.obstacles[pair.obstacle], pair.feature,
-                                          &tau_, d_hat, margin_, &edge_obstacle_alpha_[k]);
+    // The lagged closest point keeps a sphere's gap convex; a box corner
+    // (radius 0) uses the true distance: with the lag, a corner the edge slides
+    // along sees the lagged point's distance sqrt(d^2 + s^2) >> d, the barrier
+    // vanishes and the solve stalls against the CCD at d ~ 1e-10 m (a square
+    // dropped into a gap between two boxes failed most steps).
+    const Obstacle& obstacle = options_.obstacles[pair.obstacle];
+    auto cost = std::make_unique<EdgeObstacleGap>(
+        dim_, &obstacle, pair.feature, &tau_, d_hat, margin_,
+        obstacle.FeatureRadius() > 0.0 ? &edge_obstacle_alpha_[k] : nullptr);
     term.curvature = GapCurvature(cost.get());
     term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat, surface_.edge_weights[pair.edge], &kappa_);

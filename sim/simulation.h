@@ -81,7 +81,7 @@ class Simulation {
 
   // A step is solved again from its result while a step filter refreshes its
   // terms (contact set, lagged friction), at most this many times.
-  static constexpr int kMaxRefreshes = 10;
+  static constexpr int kMaxRefreshes = 40;
   // The pulled-back start stops at this fraction of the collision-free distance.
   static constexpr double kFeasibleStartFraction = 0.9;
 
