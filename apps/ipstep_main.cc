@@ -1,7 +1,7 @@
 // ipstep: runs one scene with one integrator and one optimiser.
 //   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
-// Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed with
-// --on_failure=stop, or also as substeps with --on_failure=substep.
+// Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed (also
+// as substeps, --max_substeps) with --on_failure=stop.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -10,7 +10,6 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
-#include "apps/command_line.h"
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/solver_flags.h"
@@ -20,11 +19,12 @@
 #include "problems/scene_loader.h"
 #include "sim/simulation.h"
 
-DEFINE_string(on_failure, "substep",
-              "When a step fails (not converged, energy growth, penetration, non-finite): "
-              "substep (retry it from its start as 2, 4, ... substeps up to --max_substeps, then "
-              "stop with exit code 3 if it still fails), stop (exit code 3) or continue");
-DEFINE_int32(max_substeps, 16, "--on_failure=substep: the most substeps a step is retried as");
+DEFINE_string(on_failure, "stop",
+              "When a step fails (not converged, energy growth, penetration, non-finite) even "
+              "after its substeps: stop (exit code 3) or continue");
+DEFINE_int32(max_substeps, 16,
+             "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
+             "1: no retry");
 DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
@@ -37,18 +37,14 @@ namespace {
 
 int Run() {
   SimulationOptions options = SimulationOptionsFromFlags();
-  if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue" &&
-      FLAGS_on_failure != "substep") {
+  if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
     throw InputError("flag", "--on_failure",
-                     "must be 'substep', 'stop' or 'continue', got '" + FLAGS_on_failure + "'");
+                     "must be 'stop' or 'continue', got '" + FLAGS_on_failure + "'");
   }
-  if (FLAGS_max_substeps < 2 || FLAGS_max_substeps > 1024) {
-    throw InputError("flag", "--max_substeps", "must be in [2, 1024]");
+  if (FLAGS_max_substeps < 1 || FLAGS_max_substeps > 1024) {
+    throw InputError("flag", "--max_substeps", "must be in [1, 1024] (1: no retry)");
   }
-  if (!FlagIsDefault("max_substeps") && FLAGS_on_failure != "substep") {
-    throw InputError("flag", "--max_substeps", "applies to --on_failure=substep only");
-  }
-  options.max_substeps = FLAGS_on_failure == "substep" ? FLAGS_max_substeps : 1;
+  options.max_substeps = FLAGS_max_substeps;
   if (FLAGS_frame_every < 1) throw InputError("flag", "--frame_every", "must be >= 1");
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
   CheckContactFlagsApply(scene);
@@ -110,8 +106,8 @@ int Run() {
                    progress_shown ? "\n" : "", step, r.time, r.status.c_str(), r.iterations,
                    r.residual);
       progress_shown = false;
-      if (FLAGS_on_failure != "continue") {
-        std::fprintf(stderr, "stopping (--on_failure=%s)\n", FLAGS_on_failure.c_str());
+      if (FLAGS_on_failure == "stop") {
+        std::fprintf(stderr, "stopping (--on_failure=stop)\n");
         if (!FLAGS_positions.empty())
           WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
         return kStepFailureExitCode;
