@@ -142,7 +142,7 @@ Obstacle ReadObstacle(const Param& p, int dimension) {
       }
     }
   } else {
-    p.Get("type").Fail("unknown obstacle type \"" + type +
+    p.Get("type").Fail("unknown obstacle type \"" + ClipInput(type) +
                        "\" (known: plane, sphere, circle, box)");
   }
   if (p.Has("velocity")) o.velocity = p.Get("velocity").Vector(dimension);

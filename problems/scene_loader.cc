@@ -35,6 +35,10 @@ using nlohmann::json;
 // gives an error instead of exhausting memory.
 constexpr int64_t kMaxNodes = 1000000;
 
+// Upper bound on the size of a scene file (a 1000 x 1000 grid written out as
+// explicit nodes and springs takes about 100 MB).
+constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
+
 constexpr char kOneNodeSource[] =
     "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\"";
 
@@ -64,7 +68,8 @@ std::string Join(const std::vector<std::string>& items, const std::string& separ
   return joined;
 }
 
-std::string Quoted(const std::string& text) { return "\"" + text + "\""; }
+// A name from the input, quoted and cut for a message.
+std::string Quoted(const std::string& text) { return "\"" + ClipInput(text) + "\""; }
 
 // Shortest decimal form that reads back as the same double.
 std::string FormatNumber(double value) {
@@ -220,13 +225,23 @@ SpringModel ReadSpringModel(const JsonNode& node) {
   node.Fail("unknown spring model " + Quoted(name) + " (known: hookean, squared_strain, quartic)");
 }
 
-// Removes nlohmann's "[json.exception.parse_error.101] " prefix.
+// Removes nlohmann's "[json.exception.parse_error.101] " prefix and cuts the
+// input it quotes ("last read: '...'", "number overflow parsing '...'").
 std::string WithoutExceptionId(const std::string& message) {
-  if (!message.empty() && message.front() == '[') {
-    const size_t end = message.find("] ");
-    if (end != std::string::npos) return message.substr(end + 2);
+  std::string text = message;
+  if (!text.empty() && text.front() == '[') {
+    const size_t end = text.find("] ");
+    if (end != std::string::npos) text = text.substr(end + 2);
   }
-  return message;
+  for (const char* marker : {"last read: '", "parsing '"}) {
+    const size_t start = text.find(marker);
+    const size_t end = text.rfind('\'');
+    if (start == std::string::npos) continue;
+    const size_t from = start + std::strlen(marker);
+    if (end == std::string::npos || end < from) continue;
+    text = text.substr(0, from) + ClipInput(text.substr(from, end - from)) + text.substr(end);
+  }
+  return ClipInput(text, 4 * kMaxEchoedInput);
 }
 
 // Follows the key path while nlohmann parses, so that parse errors can say
@@ -289,19 +304,37 @@ class KeyPathTracker {
   std::vector<Frame> frames_;
 };
 
+// Reads a scene file: a regular file (not a directory, device or pipe such as
+// /dev/zero, which never ends) of at most kMaxSceneFileBytes.
 std::string ReadTextFile(const std::string& path) {
+  namespace fs = std::filesystem;
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) {
     throw InputError(path + ": cannot read scene file: is a directory");
+  }
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    throw InputError(path + ": cannot read scene file: not a regular file");
+  }
+  const std::string too_large = path + ": cannot read scene file: larger than the limit of " +
+                                std::to_string(kMaxSceneFileBytes >> 20) + " MiB";
+  if (fs::exists(status) && fs::file_size(path, error) > kMaxSceneFileBytes && !error) {
+    throw InputError(too_large);
   }
   std::ifstream file(path, std::ios::binary);
   if (!file) {
     throw InputError(path + ": cannot open scene file: " + std::strerror(errno));
   }
-  std::ostringstream text;
-  text << file.rdbuf();
+  // Read with the limit as well: the file may grow, or report no size (procfs).
+  std::string text;
+  std::vector<char> buffer(1 << 16);
+  while (file.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) ||
+         file.gcount() > 0) {
+    text.append(buffer.data(), static_cast<size_t>(file.gcount()));
+    if (text.size() > kMaxSceneFileBytes) throw InputError(too_large);
+  }
   if (file.bad()) throw InputError(path + ": cannot read scene file: " + std::strerror(errno));
-  return text.str();
+  return text;
 }
 
 std::string BuiltinSource(const std::string& name) { return "problems/" + name + ".json"; }
@@ -915,6 +948,13 @@ class SceneParser {
 
 Scene ParseScene(const std::string& text, const std::string& source,
                  const SceneLoadOptions& options) {
+  // nlohmann stops at a NUL byte as at the end of the input, which would
+  // accept a valid scene followed by anything; JSON text never contains one.
+  const size_t nul = text.find('\0');
+  if (nul != std::string::npos) {
+    throw InputError(source + ": malformed JSON: NUL byte at offset " + std::to_string(nul) +
+                     " (a JSON text cannot contain one)");
+  }
   KeyPathTracker tracker(source);
   json document;
   try {
@@ -923,8 +963,9 @@ Scene ParseScene(const std::string& text, const std::string& source,
     });
   } catch (const json::parse_error& error) {
     const std::string path = tracker.CurrentPath();
-    throw InputError(source + ": malformed JSON" + (path.empty() ? "" : " (near " + path + ")") +
-                     ": " + WithoutExceptionId(error.what()));
+    throw InputError(source + ": malformed JSON" +
+                     (path.empty() ? "" : " (near " + ClipInput(path) + ")") + ": " +
+                     WithoutExceptionId(error.what()));
   } catch (const json::out_of_range& error) {
     // A number such as 1e400, read as the value at CurrentPath().
     throw InputError(source, tracker.CurrentPath(),
@@ -964,8 +1005,8 @@ std::string BuiltinSceneText(const std::string& name) {
   const auto& texts = internal::BuiltinSceneTexts();
   const auto found = texts.find(name);
   if (found == texts.end()) {
-    throw InputError(name + ": unknown built-in scene (built-in scenes: " + BuiltinNameList() +
-                     ")");
+    throw InputError(ClipInput(name) +
+                     ": unknown built-in scene (built-in scenes: " + BuiltinNameList() + ")");
   }
   return found->second;
 }
@@ -976,8 +1017,9 @@ Scene LoadScene(const std::string& name_or_path, const SceneLoadOptions& options
   }
   std::error_code error;
   if (std::filesystem::exists(name_or_path, error)) return LoadSceneFile(name_or_path, options);
-  throw InputError(name_or_path + ": no such scene file, and not a built-in scene (built-in " +
-                   "scenes: " + BuiltinNameList() + ")");
+  throw InputError(ClipInput(name_or_path) +
+                   ": no such scene file, and not a built-in scene (built-in scenes: " +
+                   BuiltinNameList() + ")");
 }
 
 }  // namespace ipstep

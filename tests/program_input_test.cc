@@ -95,6 +95,24 @@ TEST_F(ProgramInput, BadSceneFiles) {
   ExpectInputError("--scene=" + type, "type.json", "stiffness");
 }
 
+TEST_F(ProgramInput, SceneFilesAreRegularBoundedAndWhole) {
+  ExpectInputError("--scene=/dev/zero", "/dev/zero", "not a regular file");
+  ExpectInputError("--scene=" + dir_.string(), dir_.string(), "directory");
+  std::string text = kValidScene;
+  text += std::string(1, '\0') + "garbage";
+  ExpectInputError("--scene=" + Write("nul.json", text), "nul.json", "NUL byte");
+  ExpectInputError("--scene=" + Write("trailing.json", std::string(kValidScene) + " 1"),
+                   "trailing.json", "malformed JSON");
+  // A 10 MB unknown key: one short line.
+  text = kValidScene;
+  const std::string key(10 << 20, 'x');
+  const Outcome o =
+      RunIpstep("--scene=" + Write("key.json", text.replace(1, 0, "\"" + key + "\": 1,")));
+  EXPECT_EQ(o.exit_code, 2) << o.output.substr(0, 300);
+  EXPECT_LT(o.output.size(), 400u) << o.output.substr(0, 400);
+  EXPECT_NE(o.output.find("unknown key"), std::string::npos) << o.output.substr(0, 400);
+}
+
 TEST_F(ProgramInput, ValidRunWritesItsOutputs) {
   const std::string scene = Write("ok.json", kValidScene);
   const std::string stats = (dir_ / "stats.csv").string();

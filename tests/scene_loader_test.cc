@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -832,6 +833,65 @@ TEST(BadInputTest, UnreadableFiles) {
   message = InputErrorOf([&] { LoadScene(missing); });
   EXPECT_NE(message.find(missing), std::string::npos) << message;
   EXPECT_NE(message.find("no such scene file"), std::string::npos) << message;
+}
+
+// Only regular files are read, up to a size limit; a NUL byte or anything
+// after the scene's JSON value is an error (nlohmann stops at a NUL byte).
+TEST(BadInputTest, FileKindSizeAndTrailingGarbage) {
+  std::string message = InputErrorOf([] { LoadSceneFile("/dev/zero"); });
+  EXPECT_NE(message.find("/dev/zero: cannot read scene file: not a regular file"),
+            std::string::npos)
+      << message;
+  message = InputErrorOf([] { LoadScene("/dev/null"); });
+  EXPECT_NE(message.find("not a regular file"), std::string::npos) << message;
+
+  const std::string big = ::testing::TempDir() + "/scene_loader_test_big.json";
+  {
+    std::ofstream file(big);
+    file << TwoNodes().dump();
+  }
+  std::filesystem::resize_file(big, (256u << 20) + 1);  // sparse: no disk space used
+  message = InputErrorOf([&] { LoadSceneFile(big); });
+  EXPECT_NE(message.find("larger than the limit of 256 MiB"), std::string::npos) << message;
+  std::remove(big.c_str());
+
+  const std::string valid = TwoNodes().dump();
+  ExpectMessage(ErrorOfText(valid + std::string(1, '\0') + "garbage"), "NUL byte",
+                "at offset " + std::to_string(valid.size()));
+  ExpectMessage(ErrorOfText(valid + std::string(1, '\0')), "NUL byte", "");
+  ExpectMessage(ErrorOfText(valid + " {}"), "malformed JSON", "expected end of input");
+  ExpectMessage(ErrorOfText(valid + "\n x"), "malformed JSON", "");
+  EXPECT_EQ(ParseScene(valid + " \n\t\r\n", kSource).num_nodes(), 2);  // trailing blanks are fine
+}
+
+// Input echoed in a message (keys, names, tokens) is cut to about 80
+// characters, so that a 10 MB key does not make a 10 MB error line.
+TEST(BadInputTest, EchoedInputIsCut) {
+  const std::string huge(10 << 20, 'k');
+  const auto expect_short = [&](const std::string& message, const std::string& what) {
+    ExpectMessage(message, "...", what);
+    EXPECT_LT(message.size(), 400u) << message.substr(0, 400);
+  };
+  json scene = TwoNodes();
+  scene[huge] = 1;
+  expect_short(ErrorOf(scene), "unknown key");
+  scene = TwoNodes();
+  scene["nodes"][huge] = 1;
+  expect_short(ErrorOf(scene), "unknown key");
+  scene = TwoNodes();
+  scene["effects"].push_back(huge);
+  expect_short(ErrorOf(scene), "unknown effect");
+  scene = TwoNodes();
+  scene["springs"][0]["model"] = huge;
+  expect_short(ErrorOf(scene), "unknown spring model");
+  scene = Grid(3, 3, {});
+  scene["pinned"] = {huge};
+  expect_short(ErrorOf(scene), "unknown node name");
+  // Parse errors quote the token nlohmann last read.
+  expect_short(ErrorOfText("{\"name\": \"" + huge), "malformed JSON");
+  expect_short(ErrorOfText("{\"steps\": 1" + std::string(10 << 20, '0') + "}"), "out of the range");
+  expect_short(ErrorOfText("{\"a\": 1, \"" + huge + "\": 1, \"" + huge + "\": 2}"),
+               "duplicate key");
 }
 
 TEST(BadInputTest, UnknownBuiltinName) {
