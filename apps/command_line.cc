@@ -6,6 +6,7 @@
 #include <gflags/gflags.h>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 
 namespace ipstep {
 
@@ -49,6 +50,28 @@ void CheckCommandLine(int argc, char** argv) {
     }
     gflags::SetCommandLineOption(name.c_str(), saved.c_str());
   }
+}
+
+double CheckFlagRange(const char* name, double value, double min, double max,
+                      const std::string& unit, const std::string& when_omitted, bool min_open) {
+  if (!(min_open ? value > min : value >= min) || !(value <= max)) {
+    throw InputError("flag", std::string("--") + name,
+                     "must be in " + limits::RangeText(min, max, unit, min_open) +
+                         (when_omitted.empty() ? "" : " (omit the flag for " + when_omitted + ")") +
+                         ", got " + limits::FormatLimit(value));
+  }
+  return value;
+}
+
+int CheckFlagRange(const char* name, int value, int min, int max, const std::string& when_omitted) {
+  if (value < min || value > max) {
+    throw InputError("flag", std::string("--") + name,
+                     "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                         "]" +
+                         (when_omitted.empty() ? "" : " (omit the flag for " + when_omitted + ")") +
+                         ", got " + std::to_string(value));
+  }
+  return value;
 }
 
 bool FlagIsDefault(const char* name) {

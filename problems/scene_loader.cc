@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 
 namespace ipstep {
 namespace internal {
@@ -178,16 +179,26 @@ class JsonNode {
     if (!value_->is_string()) Fail("must be a string, got " + Describe(*value_));
     return value_->get<std::string>();
   }
-  // An array of `size` finite numbers (a point or vector in `size` dimensions).
-  std::vector<double> Vector(int size) const {
+  // An array of `size` finite numbers (a point or vector in `size` dimensions),
+  // each in [-bound, bound] (`unit` for the message).
+  std::vector<double> Vector(int size, double bound, const std::string& unit) const {
     if (!value_->is_array() || static_cast<int>(value_->size()) != size) {
       Fail("must be an array of " + std::to_string(size) +
            " numbers (the scene's dimension), got " + Describe(*value_));
     }
     std::vector<double> vector;
-    for (const JsonNode& element : Elements()) vector.push_back(element.Number());
+    for (const JsonNode& element : Elements()) {
+      const double number = element.Number();
+      if (!(std::abs(number) <= bound)) {
+        element.Fail("must be in " + limits::RangeText(-bound, bound, unit) + ", got " +
+                     FormatNumber(number));
+      }
+      vector.push_back(number);
+    }
     return vector;
   }
+  std::vector<double> Position(int size) const { return Vector(size, limits::kMaxCoordinate, "m"); }
+  std::vector<double> Velocity(int size) const { return Vector(size, limits::kMaxSpeed, "m/s"); }
 
  private:
   const json* value_;
@@ -201,10 +212,23 @@ double ReadPositive(const JsonNode& node) {
   return number;
 }
 
-double ReadNonNegative(const JsonNode& node) {
+// A number in [min, max] (or (min, max] with `min_open`).
+double ReadInRange(const JsonNode& node, double min, double max, const std::string& unit,
+                   bool min_open = false) {
   const double number = node.Number();
-  if (!(number >= 0)) node.Fail("must be >= 0, got " + FormatNumber(number));
+  if (!(min_open ? number > min : number >= min) || !(number <= max)) {
+    node.Fail("must be in " + limits::RangeText(min, max, unit, min_open) + ", got " +
+              FormatNumber(number));
+  }
   return number;
+}
+
+double ReadStiffness(const JsonNode& node) {
+  return ReadInRange(node, 0.0, limits::kMaxStiffness, "", /*min_open=*/true);
+}
+
+double ReadMass(const JsonNode& node) {
+  return ReadInRange(node, limits::kMinMass, limits::kMaxMass, "kg");
 }
 
 int ReadIntInRange(const JsonNode& node, int64_t min, int64_t max) {
@@ -400,9 +424,11 @@ class SceneParser {
     if (auto dimension = root.Find("dimension")) {
       scene_.dimension = ReadIntInRange(*dimension, 2, 3);
     }
-    if (auto time_step = root.Find("time_step")) scene_.time_step = ReadPositive(*time_step);
+    if (auto time_step = root.Find("time_step")) {
+      scene_.time_step = ReadInRange(*time_step, limits::kMinTimeStep, limits::kMaxTimeStep, "s");
+    }
     if (auto steps = root.Find("steps")) {
-      scene_.steps = ReadIntInRange(*steps, 0, std::numeric_limits<int>::max());
+      scene_.steps = ReadIntInRange(*steps, 0, limits::kMaxSteps);
     }
   }
 
@@ -461,9 +487,10 @@ class SceneParser {
     }
     for (int i = 0; i < num_nodes(); ++i) {
       for (int k = 0; k < dim(); ++k) {
-        if (!std::isfinite(scene_.positions[dim() * i + k])) {
-          generator.Fail("the position of node " + std::to_string(i) +
-                         " is not finite (sizes or coordinates too large)");
+        if (!(std::abs(scene_.positions[dim() * i + k]) <= limits::kMaxCoordinate)) {
+          generator.Fail("the position of node " + std::to_string(i) + " is outside " +
+                         limits::RangeText(-limits::kMaxCoordinate, limits::kMaxCoordinate, "m") +
+                         " (sizes or coordinates too large)");
         }
       }
     }
@@ -479,7 +506,7 @@ class SceneParser {
 
   // Gives node `index` its own initial velocity, read from `velocity`.
   void SetOwnVelocity(int index, const JsonNode& velocity) {
-    const std::vector<double> v = velocity.Vector(dim());
+    const std::vector<double> v = velocity.Velocity(dim());
     std::copy(v.begin(), v.end(), scene_.velocities.begin() + dim() * index);
     velocity_paths_[index] = velocity.path();
   }
@@ -488,8 +515,8 @@ class SceneParser {
   void ReadParticle(const JsonNode& particle) {
     layout_ = Layout::kParticle;
     particle.ExpectObject({"position", "mass", "velocity"});
-    const std::vector<double> position = particle.Get("position").Vector(dim());
-    AddNode(position, ReadPositive(particle.Get("mass")));
+    const std::vector<double> position = particle.Get("position").Position(dim());
+    AddNode(position, ReadMass(particle.Get("mass")));
     if (auto velocity = particle.Find("velocity")) SetOwnVelocity(0, *velocity);
   }
 
@@ -507,7 +534,7 @@ class SceneParser {
     const int count = static_cast<int>(entries.size());
     const std::vector<double> masses =
         ReadMasses(nodes, {"masses", "mass", "total_mass"}, 0, count);
-    for (int i = 0; i < count; ++i) AddNode(entries[i].Vector(dim()), masses[i]);
+    for (int i = 0; i < count; ++i) AddNode(entries[i].Position(dim()), masses[i]);
     if (auto velocities = nodes.Find("velocities")) {
       const std::vector<JsonNode> list = velocities->Elements();
       if (static_cast<int>(list.size()) != count) {
@@ -543,16 +570,17 @@ class SceneParser {
                     std::to_string(list.size()));
       }
       std::vector<double> masses;
-      for (const JsonNode& mass : list) masses.push_back(ReadPositive(mass));
+      for (const JsonNode& mass : list) masses.push_back(ReadMass(mass));
       return masses;
     }
+    if (key == "mass") return std::vector<double>(count, ReadMass(*given));
     const double value = ReadPositive(*given);
     double mass = value;
     if (key == "total_mass") mass = value / static_cast<double>(count);
     if (key == "density") mass = value * measure / static_cast<double>(count);
-    if (!(mass > 0) || !std::isfinite(mass)) {
-      given->Fail("gives each node a mass of " + FormatNumber(mass) +
-                  ", which must be finite and > 0");
+    if (!(mass >= limits::kMinMass && mass <= limits::kMaxMass)) {
+      given->Fail("gives each node a mass of " + FormatNumber(mass) + " kg, which must be in " +
+                  limits::RangeText(limits::kMinMass, limits::kMaxMass, "kg"));
     }
     return std::vector<double>(count, mass);
   }
@@ -561,9 +589,9 @@ class SceneParser {
     layout_ = Layout::kChain;
     chain.ExpectObject({"count", "from", "to", "mass", "total_mass", "density", "spring"});
     const int count = ReadIntInRange(chain.Get("count"), 2, kMaxNodes);
-    const std::vector<double> from = chain.Get("from").Vector(dim());
+    const std::vector<double> from = chain.Get("from").Position(dim());
     const JsonNode to_node = chain.Get("to");
-    const std::vector<double> to = to_node.Vector(dim());
+    const std::vector<double> to = to_node.Position(dim());
     double length = 0.0;
     for (int k = 0; k < dim(); ++k) length += (to[k] - from[k]) * (to[k] - from[k]);
     length = std::sqrt(length);
@@ -607,7 +635,7 @@ class SceneParser {
     const double width = ReadPositive(grid.Get("width"));
     const double height = ReadPositive(grid.Get("height"));
     std::vector<double> origin(dim(), 0.0);
-    if (auto node = grid.Find("origin")) origin = node->Vector(dim());
+    if (auto node = grid.Find("origin")) origin = node->Position(dim());
 
     // The grid spans axis u (columns, width) and axis v (rows, height).
     int u = 0;
@@ -688,7 +716,7 @@ class SceneParser {
     RequireEffect(node, "springs");
     node.ExpectObject({"model", "stiffness"});
     return SpringFamily{node.path(), ReadSpringModel(node.Get("model")),
-                        ReadPositive(node.Get("stiffness"))};
+                        ReadStiffness(node.Get("stiffness"))};
   }
 
   double Distance(int i, int j) const {
@@ -702,11 +730,12 @@ class SceneParser {
 
   void AddGeneratedSpring(const SpringFamily& family, int i, int j) {
     const double length = Distance(i, j);
-    if (!(length > 0) || !std::isfinite(length)) {
+    if (!(length >= limits::kMinLength && length <= limits::kMaxLength)) {
       throw InputError(source_, family.path,
                        "the spring between nodes " + std::to_string(i) + " and " +
                            std::to_string(j) + " would have rest length " + FormatNumber(length) +
-                           "; it must be finite and > 0");
+                           " m; it must be in " +
+                           limits::RangeText(limits::kMinLength, limits::kMaxLength, "m"));
     }
     scene_.springs.push_back(Spring{i, j, family.model, family.stiffness, length});
   }
@@ -734,9 +763,9 @@ class SceneParser {
       nodes.Fail("must name two different nodes, got node " + std::to_string(spring.i) + " twice");
     }
     spring.model = ReadSpringModel(entry.Get("model"));
-    spring.stiffness = ReadPositive(entry.Get("stiffness"));
+    spring.stiffness = ReadStiffness(entry.Get("stiffness"));
     if (auto rest_length = entry.Find("rest_length")) {
-      spring.rest_length = ReadPositive(*rest_length);
+      spring.rest_length = ReadInRange(*rest_length, limits::kMinLength, limits::kMaxLength, "m");
     } else {
       spring.rest_length = Distance(spring.i, spring.j);
       if (!(spring.rest_length > 0)) {
@@ -747,6 +776,13 @@ class SceneParser {
       if (!std::isfinite(spring.rest_length)) {
         entry.FailAt(entry.ChildPath("rest_length"),
                      "is required: the initial length is not finite");
+      }
+      if (!(spring.rest_length >= limits::kMinLength && spring.rest_length <= limits::kMaxLength)) {
+        entry.FailAt(entry.ChildPath("rest_length"),
+                     "the initial distance of nodes " + std::to_string(spring.i) + " and " +
+                         std::to_string(spring.j) + " is " + FormatNumber(spring.rest_length) +
+                         " m; a rest length must be in " +
+                         limits::RangeText(limits::kMinLength, limits::kMaxLength, "m"));
       }
     }
     scene_.springs.push_back(spring);
@@ -814,7 +850,7 @@ class SceneParser {
   void ReadGravity(const JsonNode& root) {
     if (auto gravity = root.Find("gravity")) {
       RequireEffect(*gravity, "gravity");
-      scene_.gravity = gravity->Vector(dim());
+      scene_.gravity = gravity->Vector(dim(), limits::kMaxAcceleration, "m/s^2");
     } else if (scene_.HasEffect("gravity")) {
       root.FailAt("gravity", "is missing but \"effects\" lists \"gravity\" (" +
                                  effect_paths_.at("gravity") + ")");
@@ -833,10 +869,11 @@ class SceneParser {
     RequireEffect(*damping, "damping");
     damping->ExpectObject({"mass_proportional", "stiffness_proportional"});
     if (auto alpha = damping->Find("mass_proportional")) {
-      scene_.damping.mass_proportional = ReadNonNegative(*alpha);
+      scene_.damping.mass_proportional = ReadInRange(*alpha, 0.0, limits::kMaxMassDamping, "1/s");
     }
     if (auto beta = damping->Find("stiffness_proportional")) {
-      scene_.damping.stiffness_proportional = ReadNonNegative(*beta);
+      scene_.damping.stiffness_proportional =
+          ReadInRange(*beta, 0.0, limits::kMaxStiffnessDamping, "s");
       if (scene_.damping.stiffness_proportional > 0 && !scene_.HasEffect("springs")) {
         beta->Fail("has no effect without the \"springs\" effect");
       }
@@ -861,7 +898,7 @@ class SceneParser {
   void ReadInitialVelocity(const JsonNode& root) {
     auto velocity = root.Find("initial_velocity");
     if (!velocity) return;
-    const std::vector<double> v = velocity->Vector(dim());
+    const std::vector<double> v = velocity->Velocity(dim());
     bool used = false;
     for (int i = 0; i < num_nodes(); ++i) {
       if (!velocity_paths_[i].empty()) continue;  // a node's own velocity wins
@@ -892,7 +929,7 @@ class SceneParser {
       entry.ExpectObject({"node", "velocity"});
       const JsonNode reference = entry.Get("node");
       const std::vector<int> nodes = ReadNodeReference(reference);
-      const std::vector<double> velocity = entry.Get("velocity").Vector(dim());
+      const std::vector<double> velocity = entry.Get("velocity").Velocity(dim());
       for (int node : nodes) {
         if (pinned_by_.count(node) != 0) {
           reference.Fail("node " + std::to_string(node) + " is pinned by " + pinned_by_[node] +
