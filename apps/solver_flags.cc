@@ -45,8 +45,8 @@ DEFINE_bool(mass_scaled_coordinates, true,
 DEFINE_bool(precise_energy, true,
             "line-search optimizers: sum energies in extended precision (resolves smaller "
             "force imbalances; costs one extra energy pass per evaluation)");
-DEFINE_double(newmark_beta, 0.25, "Newmark beta, in (0, 1]");
-DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in (0, 1]");
+DEFINE_double(newmark_beta, 0.25, "Newmark beta, in [1e-3, 1] (integrators/newmark.h)");
+DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in [0.5, 1] (integrators/newmark.h)");
 DEFINE_int32(grid_size, 0, "Override the node count per side of a scene's grid; 0: the scene's");
 
 namespace ipstep {

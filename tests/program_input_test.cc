@@ -54,6 +54,8 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--integrator=newmark --newmark_beta=0", "flag", "--newmark_beta");
   ExpectInputError("--integrator=newmark --newmark_gamma=2", "flag", "--newmark_gamma");
   ExpectInputError("--newmark_beta=0.3", "flag", "--newmark_beta");
+  ExpectInputError("--integrator=newmark --newmark_beta=1e-300", "flag", "--newmark_beta");
+  ExpectInputError("--integrator=newmark --newmark_gamma=0.4", "flag", "--newmark_gamma");
   ExpectInputError("--on_failure=maybe", "flag", "--on_failure");
   ExpectInputError("--linear_solver=MAGIC", "flag", "--linear_solver");
   ExpectInputError("--sparse_library=MKL", "flag", "--sparse_library");
