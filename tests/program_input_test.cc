@@ -77,6 +77,69 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--scene=oscillator --contact_dhat=0.01", "flag", "--contact_dhat");
 }
 
+// An unset flag means the default; an explicit 0 (or -1) is a value, and out
+// of range. Every size-like flag has an upper bound (core/input_limits.h).
+TEST_F(ProgramInput, ExplicitSentinelsAndHugeValuesAreErrors) {
+  for (const char* arguments : {"--dt=0",
+                                "--steps=-1",
+                                "--max_iterations=0",
+                                "--time_limit=0",
+                                "--trust_region_radius=0",
+                                "--optimizer=lbfgs --lbfgs_rank=0",
+                                "--scene=cloth --grid_size=0",
+                                "--num_threads=0",
+                                "--optimizer=lbfgs --lbfgs_rank=2147483647",
+                                "--max_iterations=2147483647",
+                                "--steps=2147483647",
+                                "--num_threads=100000",
+                                "--scene=cloth --grid_size=2147483647",
+                                "--frame_every=2147483647",
+                                "--dt=1e-13",
+                                "--dt=1e4",
+                                "--time_limit=1e308",
+                                "--time_limit=inf",
+                                "--trust_region_radius=1e300",
+                                "--trust_region_radius=1e-300",
+                                "--tolerance=inf"}) {
+    const std::string text = arguments;
+    const size_t flag = text.rfind("--");
+    ExpectInputError(text, "flag", text.substr(flag, text.find('=', flag) - flag));
+  }
+  const Outcome o = RunIpstep("--dt=0");
+  EXPECT_NE(o.output.find("flag: --dt: must be in [1e-12, 1e3] s (omit the flag for the scene's "
+                          "time_step), got 0"),
+            std::string::npos)
+      << o.output;
+  const Outcome rank = RunIpstep("--optimizer=lbfgs --lbfgs_rank=2147483647");
+  EXPECT_NE(rank.output.find("[1, 1000]"), std::string::npos) << rank.output;
+  // In range: runs.
+  for (const char* arguments :
+       {"--dt=1e-6 --steps=2", "--steps=0", "--max_iterations=1 --on_failure=continue --steps=2",
+        "--time_limit=1e9 --steps=2", "--trust_region_radius=1e-12 --steps=2",
+        "--optimizer=lbfgs --lbfgs_rank=1000 --steps=2", "--scene=cloth --grid_size=2 --steps=2",
+        "--num_threads=2 --steps=2", "--frame_every=10000000 --steps=2"}) {
+    const Outcome ok = RunIpstep(arguments);
+    EXPECT_EQ(ok.exit_code, 0) << arguments << "\n" << ok.output;
+  }
+}
+
+TEST_F(ProgramInput, CompareFlagsFollowTheContract) {
+  const auto run = [](const std::string& arguments) {
+    return ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, arguments);
+  };
+  for (const char* arguments :
+       {"--dt=0", "--steps=-1", "--max_iterations=0", "--steps=2147483647",
+        "--integrators=", "--optimizers=,", "--integrators=rk4", "--optimizers=adam",
+        "--integrator=newmark --newmark_beta=1e-300", "--no_such_flag"}) {
+    const Outcome o = run(arguments);
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind("ipstep_compare: error: flag: --", 0), 0u) << arguments << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  }
+  const Outcome ok = run("--steps=2 --integrators=backward_euler --optimizers=newton");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
 TEST_F(ProgramInput, BadSceneFiles) {
   ExpectInputError("--scene=" + (dir_ / "missing.json").string(), "missing.json", "");
   ExpectInputError("--scene=no_such_builtin", "no_such_builtin", "oscillator");
