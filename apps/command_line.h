@@ -1,6 +1,8 @@
 // Strict command-line checking in front of gflags: an unknown flag or a value
 // gflags cannot parse becomes one InputError naming the flag (exit code 2),
-// instead of gflags' own exit(1).
+// instead of gflags' own exit(1). gflags' --flagfile, --fromenv and
+// --tryfromenv are expanded here, so that the flags they bring are checked the
+// same way (gflags ignores bad lines of a flagfile); --undefok is refused.
 #pragma once
 
 #include <string>
@@ -8,8 +10,17 @@
 
 namespace ipstep {
 
-// Throws InputError. Call before gflags::ParseCommandLineFlags.
-void CheckCommandLine(int argc, char** argv);
+// Expands --flagfile=FILE[,FILE...] (lines --name=value, # comments and blank
+// lines; nested flagfiles up to 10 deep), --fromenv=a,b and --tryfromenv=a,b
+// (the variables FLAGS_a, FLAGS_b) into the flags they stand for, and checks
+// every flag. Returns the arguments to hand to gflags (argv[0] first). Throws
+// InputError naming the flag and, for expanded flags, the file and line or the
+// variable. Call before gflags::ParseCommandLineNonHelpFlags.
+std::vector<std::string> CheckCommandLine(int argc, char** argv);
+
+// Where the value of flag `name` came from when CheckCommandLine took it from
+// a flagfile or the environment ("in flagfile f.flags, line 3"); else "".
+std::string FlagOrigin(const std::string& name);
 
 // True if the flag `name` (without dashes) was not given on the command line.
 bool FlagIsDefault(const char* name);

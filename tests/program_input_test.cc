@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -138,6 +139,66 @@ TEST_F(ProgramInput, CompareFlagsFollowTheContract) {
   }
   const Outcome ok = run("--steps=2 --integrators=backward_euler --optimizers=newton");
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
+// gflags' own flags follow the contract too: help variants exit 0; flags from
+// a flagfile or the environment are checked like the command line's.
+TEST_F(ProgramInput, GflagsOwnFlags) {
+  for (const std::string help : {"--help", "--helpfull", "--helpshort", "--helppackage",
+                                 "--helpon=solver_flags", "--helpmatch=solver", "--helpxml"}) {
+    const Outcome o = RunIpstep(help);
+    EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
+    EXPECT_NE(o.output.find("dt"), std::string::npos) << help << "\n" << o.output.substr(0, 300);
+  }
+  const Outcome version = RunIpstep("--version");
+  EXPECT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_EQ(version.output.rfind("ipstep", 0), 0u) << version.output;
+  EXPECT_NE(RunIpstep("--helpshort").output.find("frame_every"), std::string::npos);
+  EXPECT_EQ(RunIpstep("--helpshort").output.find("logtostderr"), std::string::npos);
+
+  // --flagfile: every line is checked; where it came from is named.
+  const std::string good =
+      Write("good.flags", "# comment\n\n  --dt=0.05\n--steps=2\n--noprogress\n");
+  const Outcome applied = RunIpstep("--flagfile=" + good);
+  EXPECT_EQ(applied.exit_code, 0) << applied.output;
+  EXPECT_NE(applied.output.find("dt 0.05 s, 2 steps"), std::string::npos) << applied.output;
+  const Outcome two_tokens = RunIpstep("--flagfile " + good + " --steps=3");
+  EXPECT_NE(two_tokens.output.find("dt 0.05 s, 3 steps"), std::string::npos) << two_tokens.output;
+  const std::string unknown = Write("unknown.flags", "--dt=0.05\n--no_such_flag=1\n");
+  ExpectInputError("--flagfile=" + unknown, "--no_such_flag", "unknown.flags, line 2");
+  ExpectInputError("--flagfile=" + Write("zero.flags", "--dt=0\n"), "--dt", "zero.flags, line 1");
+  ExpectInputError("--flagfile=" + Write("value.flags", "--dt\n"), "--dt", "missing value");
+  ExpectInputError("--flagfile=" + Write("section.flags", "ipstep\n--dt=1\n"), "--flagfile",
+                   "section.flags, line 1");
+  ExpectInputError("--flagfile=" + (dir_ / "missing.flags").string(), "--flagfile",
+                   "missing.flags");
+  ExpectInputError("--flagfile=/dev/zero", "--flagfile", "not a regular file");
+  const std::string loop = (dir_ / "loop.flags").string();
+  Write("loop.flags", "--flagfile=" + loop + "\n");
+  ExpectInputError("--flagfile=" + loop, "--flagfile", "nested");
+  ExpectInputError("--flagfile", "--flagfile", "missing value");
+
+  // --fromenv / --tryfromenv read FLAGS_<name>.
+  const auto with_env = [](const std::string& env, const std::string& arguments) {
+    return ipstep::testing::RunProgram(env + " " + IPSTEP_BINARY, arguments);
+  };
+  Outcome o = with_env("FLAGS_dt=0.05", "--fromenv=dt --steps=1");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("dt 0.05 s"), std::string::npos) << o.output;
+  o = with_env("FLAGS_dt=0", "--tryfromenv=dt");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--dt: must be in"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("FLAGS_dt"), std::string::npos) << o.output;
+  o = with_env("FLAGS_dt=abc", "--fromenv=dt");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  ExpectInputError("--fromenv=ipstep_test_unset_flag", "--fromenv", "ipstep_test_unset_flag");
+  o = with_env("env -u FLAGS_steps", "--fromenv=steps");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("FLAGS_steps is not set"), std::string::npos) << o.output;
+  o = with_env("env -u FLAGS_steps", "--tryfromenv=steps --steps=1");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  ExpectInputError("--undefok=foo", "--undefok", "not supported");
 }
 
 TEST_F(ProgramInput, BadSceneFiles) {
