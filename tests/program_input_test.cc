@@ -201,6 +201,55 @@ TEST_F(ProgramInput, GflagsOwnFlags) {
   ExpectInputError("--undefok=foo", "--undefok", "not supported");
 }
 
+#ifdef IPSTEP_BENCH_BINARY
+// ipstep_bench has its own flags but the same contract.
+TEST_F(ProgramInput, BenchFlagsFollowTheContract) {
+  const auto run = [](const std::string& arguments) {
+    return ipstep::testing::RunProgram(IPSTEP_BENCH_BINARY, arguments);
+  };
+  const std::string flagfile = Write("bench.flags", "--repeats=1\n--bogus=1\n");
+  for (const std::string& arguments :
+       std::vector<std::string>{"--steps=0",
+                                "--t_end=0",
+                                "--repeats=0",
+                                "--repeats=2147483647",
+                                "--warmup=2147483647",
+                                "--steps=2147483647",
+                                "--t_end=1e300",
+                                "--dts=1e-300",
+                                "--dts=1e300",
+                                "--dt_factors=1e-300",
+                                "--grid_sizes=0",
+                                "--grid_sizes=2147483647",
+                                "--optimizers=newton+radius=0",
+                                "--optimizers=lbfgs+rank=2147483647",
+                                "--optimizers=newton+threads=100000",
+                                "--optimizers=newton+max_iterations=2147483647",
+                                "--max_run_seconds=-1",
+                                "--max_run_seconds=1e300",
+                                "--reference_tolerance=0",
+                                "--tolerances=inf",
+                                "--merge=/dev/zero",
+                                "--flagfile=" + flagfile,
+                                "--undefok=x",
+                                "--no_such_flag"}) {
+    const Outcome o = run(arguments + " --dry_run --output=" + (dir_ / "out.csv").string());
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind("ipstep_bench: error: ", 0), 0u) << arguments << "\n" << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  }
+  for (const char* help : {"--help", "--helpshort", "--version"}) {
+    const Outcome o = run(help);
+    EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
+  }
+  EXPECT_NE(run("--helpshort").output.find("repeats"), std::string::npos);
+  const Outcome ok = run("--grid_sizes=scene,4 --scenes=cloth --steps=3 --dry_run");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("grid=0"), std::string::npos) << ok.output;
+  EXPECT_NE(ok.output.find("grid=4"), std::string::npos) << ok.output;
+}
+#endif
+
 TEST_F(ProgramInput, BadSceneFiles) {
   ExpectInputError("--scene=" + (dir_ / "missing.json").string(), "missing.json", "");
   ExpectInputError("--scene=no_such_builtin", "no_such_builtin", "oscillator");
