@@ -1049,6 +1049,10 @@ std::string BuiltinSceneText(const std::string& name) {
 }
 
 Scene LoadScene(const std::string& name_or_path, const SceneLoadOptions& options) {
+  if (name_or_path.empty()) {
+    throw InputError("scene: the name is empty: give a built-in scene (" + BuiltinNameList() +
+                     ") or a JSON file");
+  }
   if (IsBuiltinScene(name_or_path)) {
     return ParseScene(BuiltinSceneText(name_or_path), BuiltinSource(name_or_path), options);
   }

@@ -928,6 +928,9 @@ TEST(BadInputTest, UnreadableFiles) {
   message = InputErrorOf([&] { LoadSceneFile(::testing::TempDir()); });
   EXPECT_NE(message.find("is a directory"), std::string::npos) << message;
 
+  message = InputErrorOf([] { LoadScene(""); });
+  EXPECT_EQ(message.rfind("scene: the name is empty", 0), 0u) << message;
+
   message = InputErrorOf([&] { LoadScene(missing); });
   EXPECT_NE(message.find(missing), std::string::npos) << message;
   EXPECT_NE(message.find("no such scene file"), std::string::npos) << message;
