@@ -6,45 +6,43 @@
 #include "apps/command_line.h"
 #include "contact/contact_overrides.h"
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "problems/scene.h"
 
 DEFINE_double(contact_kappa, 0.0,
-              "Fixed barrier stiffness kappa for scenes with contact (> 0); 0: the scene's "
-              "(adaptive when the scene gives none)");
-DEFINE_double(contact_dhat, 0.0, "Barrier activation distance d_hat [m] (> 0); 0: the scene's");
+              "Fixed barrier stiffness kappa for scenes with contact, in (0, 1e20]; default: the "
+              "scene's (adaptive when the scene gives none)");
+DEFINE_double(contact_dhat, 0.0,
+              "Barrier activation distance d_hat [m] for scenes with contact, in [1e-9, 1e6]; "
+              "default: the scene's");
 DEFINE_double(friction_mu, 0.0,
-              "Friction coefficient (>= 0) for scenes with friction; default: the scene's");
+              "Friction coefficient for scenes with friction, in [0, 100]; default: the scene's");
 DEFINE_int32(friction_iterations, 0,
-             "Friction lag iterations per step (>= 1); 0: the scene's (default 1)");
+             "Friction lag iterations per step for scenes with friction, in [1, 100]; default: "
+             "the scene's (1 when the scene gives none)");
 
 namespace ipstep {
 namespace {
 
+// Each flag is used only when given; an explicit 0 is out of range, not "unset".
 ContactOverrides OverridesFromFlags() {
   ContactOverrides o;
   if (!FlagIsDefault("contact_kappa")) {
-    if (!std::isfinite(FLAGS_contact_kappa) || !(FLAGS_contact_kappa > 0.0)) {
-      throw InputError("flag", "--contact_kappa", "must be a finite number > 0");
-    }
-    o.kappa = FLAGS_contact_kappa;
+    o.kappa = CheckFlagRange("contact_kappa", FLAGS_contact_kappa, 0.0, limits::kMaxKappa, "",
+                             "the scene's kappa", /*min_open=*/true);
   }
   if (!FlagIsDefault("contact_dhat")) {
-    if (!std::isfinite(FLAGS_contact_dhat) || !(FLAGS_contact_dhat > 0.0)) {
-      throw InputError("flag", "--contact_dhat", "must be a finite number > 0");
-    }
-    o.d_hat = FLAGS_contact_dhat;
+    o.d_hat = CheckFlagRange("contact_dhat", FLAGS_contact_dhat, limits::kMinDhat, limits::kMaxDhat,
+                             "m", "the scene's dhat");
   }
   if (!FlagIsDefault("friction_mu")) {
-    if (!std::isfinite(FLAGS_friction_mu) || !(FLAGS_friction_mu >= 0.0)) {
-      throw InputError("flag", "--friction_mu", "must be a finite number >= 0");
-    }
-    o.mu = FLAGS_friction_mu;
+    o.mu = CheckFlagRange("friction_mu", FLAGS_friction_mu, 0.0, limits::kMaxFrictionMu, "",
+                          "the scene's mu");
   }
   if (!FlagIsDefault("friction_iterations")) {
-    if (FLAGS_friction_iterations < 1 || FLAGS_friction_iterations > 100) {
-      throw InputError("flag", "--friction_iterations", "must be an integer in [1, 100]");
-    }
-    o.friction_iterations = FLAGS_friction_iterations;
+    o.friction_iterations =
+        CheckFlagRange("friction_iterations", FLAGS_friction_iterations, 1,
+                       limits::kMaxFrictionIterations, "the scene's iterations");
   }
   return o;
 }

@@ -81,6 +81,8 @@ int Run() {
   CheckContactFlagsApply(scene);
   const std::vector<std::string> integrators = SplitList(FLAGS_integrators);
   const std::vector<std::string> optimizers = SplitList(FLAGS_optimizers);
+  if (integrators.empty()) throw InputError("flag", "--integrators", "lists no integrator");
+  if (optimizers.empty()) throw InputError("flag", "--optimizers", "lists no optimizer");
   for (const std::string& name : integrators) {
     IntegratorOptions check = base.integrator;
     check.name = name;

@@ -10,10 +10,12 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include "apps/command_line.h"
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "io/positions_writer.h"
 #include "io/stats_writer.h"
 #include "problems/scene_loader.h"
@@ -29,7 +31,7 @@ DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
 DEFINE_string(frames, "", "Directory for legacy-VTK frames (ParaView)");
-DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames)");
+DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
 DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer than 3 s");
 
 namespace ipstep {
@@ -39,13 +41,11 @@ int Run() {
   SimulationOptions options = SimulationOptionsFromFlags();
   if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
     throw InputError("flag", "--on_failure",
-                     "must be 'stop' or 'continue', got '" + FLAGS_on_failure + "'");
+                     "must be 'stop' or 'continue', got '" + ClipInput(FLAGS_on_failure) + "'");
   }
-  if (FLAGS_max_substeps < 1 || FLAGS_max_substeps > 1024) {
-    throw InputError("flag", "--max_substeps", "must be in [1, 1024] (1: no retry)");
-  }
-  options.max_substeps = FLAGS_max_substeps;
-  if (FLAGS_frame_every < 1) throw InputError("flag", "--frame_every", "must be >= 1");
+  options.max_substeps =
+      CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps (1: no retry)");
+  CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
   CheckContactFlagsApply(scene);
   Simulation sim(scene, options);

@@ -10,6 +10,7 @@ namespace ipstep {
 // iteration. Returns run()'s exit code, or kInputErrorExitCode after printing
 // "<program>: error: <message>" for an InputError (1 and "internal error" for any
 // other exception).
+// --help and its variants print and return 0 (gflags would exit with 1).
 int ProgramMain(int argc, char** argv, const char* program, const char* usage,
                 const std::function<int()>& run);
 

@@ -4,6 +4,7 @@
 
 #include "apps/command_line.h"
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "energies/effect_registry.h"
 
 DEFINE_string(scene, "oscillator",
@@ -14,23 +15,24 @@ DEFINE_string(integrator, "backward_euler",
 DEFINE_string(optimizer, "newton",
               "newton | dogleg | gauss_newton | lbfgs | bfgs | ncg | gradient_descent | "
               "projected_newton (Eigen, not Ceres)");
-DEFINE_double(dt, 0.0, "Time step [s]; 0 uses the scene's time_step");
-DEFINE_int32(steps, -1, "Number of steps; -1 uses the scene's steps");
+DEFINE_double(dt, 0.0, "Time step [s], in [1e-12, 1e3]; default: the scene's time_step");
+DEFINE_int32(steps, -1, "Number of steps, in [0, 10000000]; default: the scene's steps");
 DEFINE_double(tolerance, 1e-5,
               "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step");
 DEFINE_int32(max_iterations, 0,
-             "Optimizer iteration limit per step; 0: newton/dogleg/gauss_newton/projected_newton "
-             "100, lbfgs/bfgs 5000, ncg 20000, gradient_descent 50000");
-DEFINE_double(time_limit, 0.0, "Wall-time limit per step [s]; 0: none");
-DEFINE_int32(num_threads, 1, "Ceres threads (newton, dogleg, gauss_newton)");
+             "Optimizer iteration limit per step, in [1, 1000000]; default: "
+             "newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, ncg 20000, "
+             "gradient_descent 50000");
+DEFINE_double(time_limit, 0.0, "Wall-time limit per step [s], in (0, 1e9]; default: none");
+DEFINE_int32(num_threads, 1, "Ceres threads (newton, dogleg, gauss_newton), in [1, 256]");
 DEFINE_string(linear_solver, "",
               "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
 DEFINE_string(
     sparse_library, "",
     "newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | EIGEN_SPARSE (default CX_SPARSE)");
 DEFINE_double(trust_region_radius, 0.0,
-              "newton/dogleg/gauss_newton: initial trust-region radius; 0: newton and gauss_newton "
-              "1e16, dogleg 1e4");
+              "newton/dogleg/gauss_newton: initial trust-region radius, in [1e-12, 1e20]; "
+              "default: newton and gauss_newton 1e16, dogleg 1e4");
 DEFINE_bool(backtrack_rejected_steps, true,
             "newton/dogleg/gauss_newton: when Ceres rejects a trial step (refused by contact, or "
             "the energy "
@@ -39,18 +41,21 @@ DEFINE_bool(backtrack_rejected_steps, true,
 DEFINE_string(line_search, "", "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
 DEFINE_string(nonlinear_cg, "",
               "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIEFEL (default FLETCHER_REEVES)");
-DEFINE_int32(lbfgs_rank, 0, "lbfgs: number of correction pairs; 0: 20");
+DEFINE_int32(lbfgs_rank, 0, "lbfgs: number of correction pairs, in [1, 1000]; default: 20");
 DEFINE_bool(mass_scaled_coordinates, true,
             "line-search optimizers: work in z = sqrt(m) x / h (kinetic-energy metric)");
 DEFINE_bool(precise_energy, true,
             "line-search optimizers: sum energies in extended precision (resolves smaller "
             "force imbalances; costs one extra energy pass per evaluation)");
-DEFINE_double(newmark_beta, 0.25, "Newmark beta, in (0, 1]");
-DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in (0, 1]");
+DEFINE_double(newmark_beta, 0.25, "Newmark beta, in [1e-3, 1] (integrators/newmark.h)");
+DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in [0.5, 1] (integrators/newmark.h)");
 DEFINE_double(energy_tolerance, 0.1,
               "A step whose energy grows by more than this fraction of the energy in motion "
-              "fails with status 'energy growth' (variational integrators); 0: no check");
-DEFINE_int32(grid_size, 0, "Override the node count per side of a scene's grid; 0: the scene's");
+              "fails with status 'energy growth' (variational integrators), in [0, 100]; 0: no "
+              "check");
+DEFINE_int32(grid_size, 0,
+             "Override the node count per side of a scene's grid, in [2, 1000]; default: the "
+             "scene's");
 
 namespace ipstep {
 namespace {
@@ -82,16 +87,11 @@ SimulationOptions SimulationOptionsFromFlags() {
   OptimizerOptions& p = o.optimizer;
   p.optimizer = ParseOptimizer(FLAGS_optimizer);
   p.tolerance = FLAGS_tolerance;
-  p.max_iterations = FLAGS_max_iterations;
-  p.time_limit = FLAGS_time_limit;
-  p.num_threads = FLAGS_num_threads;
   p.linear_solver = FLAGS_linear_solver;
   p.sparse_library = FLAGS_sparse_library;
-  p.initial_trust_region_radius = FLAGS_trust_region_radius;
   p.backtrack_rejected_steps = FLAGS_backtrack_rejected_steps;
   p.line_search = FLAGS_line_search;
   p.nonlinear_cg = FLAGS_nonlinear_cg;
-  p.lbfgs_rank = FLAGS_lbfgs_rank;
   p.mass_scaled_coordinates = FLAGS_mass_scaled_coordinates;
   p.precise_line_search_energy = FLAGS_precise_energy;
   for (const char* flag : {"linear_solver", "sparse_library", "trust_region_radius", "num_threads",
@@ -102,27 +102,48 @@ SimulationOptions SimulationOptionsFromFlags() {
        {"line_search", "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates"}) {
     RequireOptimizerFamily(flag, OptimizerFamily::kLineSearch, p.optimizer);
   }
+  // Flags whose unset value is a sentinel of the options (0 or -1: the
+  // default) are used only when given, and then must be in range: an explicit
+  // --dt=0 is an error, not the scene's time step.
+  if (!FlagIsDefault("max_iterations")) {
+    p.max_iterations =
+        CheckFlagRange("max_iterations", FLAGS_max_iterations, 1, limits::kMaxIterations,
+                       "the optimizer's default: newton/dogleg/gauss_newton/projected_newton "
+                       "100, lbfgs/bfgs 5000, ncg 20000, gradient_descent 50000");
+  }
+  if (!FlagIsDefault("time_limit")) {
+    p.time_limit = CheckFlagRange("time_limit", FLAGS_time_limit, 0.0, limits::kMaxTimeLimit, "s",
+                                  "no limit", /*min_open=*/true);
+  }
+  p.num_threads = CheckFlagRange("num_threads", FLAGS_num_threads, 1, limits::kMaxThreads, "");
+  if (!FlagIsDefault("trust_region_radius")) {
+    p.initial_trust_region_radius = CheckFlagRange(
+        "trust_region_radius", FLAGS_trust_region_radius, limits::kMinTrustRegionRadius,
+        limits::kMaxTrustRegionRadius, "", "newton and gauss_newton 1e16, dogleg 1e4");
+  }
+  if (!FlagIsDefault("lbfgs_rank")) {
+    p.lbfgs_rank =
+        CheckFlagRange("lbfgs_rank", FLAGS_lbfgs_rank, 1, limits::kMaxLbfgsRank, "the rank 20");
+  }
   ValidateOptimizerOptions(p);
-  if (!std::isfinite(FLAGS_dt) || FLAGS_dt < 0.0) {
-    throw InputError("flag", "--dt", "must be a finite number > 0 (0: the scene's time_step)");
+  if (!FlagIsDefault("dt")) {
+    o.time_step = CheckFlagRange("dt", FLAGS_dt, limits::kMinTimeStep, limits::kMaxTimeStep, "s",
+                                 "the scene's time_step");
   }
-  if (FLAGS_steps < -1) throw InputError("flag", "--steps", "must be >= 0 (-1: the scene's steps)");
-  if (!std::isfinite(FLAGS_energy_tolerance) || FLAGS_energy_tolerance < 0.0 ||
-      FLAGS_energy_tolerance > 100.0) {
-    throw InputError("flag", "--energy_tolerance", "must be in [0, 100] (0: no check)");
+  if (!FlagIsDefault("steps")) {
+    o.steps = CheckFlagRange("steps", FLAGS_steps, 0, limits::kMaxSteps, "the scene's steps");
   }
-  o.energy_tolerance = FLAGS_energy_tolerance;
-  o.time_step = FLAGS_dt;
-  o.steps = FLAGS_steps;
+  o.energy_tolerance = CheckFlagRange("energy_tolerance", FLAGS_energy_tolerance, 0.0, 100.0, "",
+                                      "0.1 (0: no check)");
   return o;
 }
 
 SceneLoadOptions SceneLoadOptionsFromFlags() {
   SceneLoadOptions o;
-  if (FLAGS_grid_size < 0 || FLAGS_grid_size == 1) {
-    throw InputError("flag", "--grid_size", "must be >= 2 (0: the scene's size)");
+  if (!FlagIsDefault("grid_size")) {
+    o.grid_size =
+        CheckFlagRange("grid_size", FLAGS_grid_size, 2, limits::kMaxGridSize, "the scene's size");
   }
-  o.grid_size = FLAGS_grid_size;
   o.extra_effects = EffectRegistry::Global().UserNames();
   return o;
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
@@ -25,15 +26,28 @@ double Since(Clock::time_point start) {
 double ParseNumber(const std::string& spec, const std::string& key, const std::string& value) {
   double number = 0.0;
   if (!ParseFiniteNumber(value, &number)) {
-    throw InputError("optimizer spec", spec, key + ": not a number: '" + value + "'");
+    throw InputError("optimizer spec", spec, key + ": not a number: '" + ClipInput(value) + "'");
   }
   return number;
 }
 
-int ParseCount(const std::string& spec, const std::string& key, const std::string& value) {
+// A number in [min, max] (the range of the corresponding ipstep flag).
+double ParseNumberInRange(const std::string& spec, const std::string& key, const std::string& value,
+                          double min, double max) {
   const double number = ParseNumber(spec, key, value);
-  if (number < 1 || number != std::floor(number) || number > 1e9) {
-    throw InputError("optimizer spec", spec, key + ": must be an integer >= 1");
+  if (!(number >= min && number <= max)) {
+    throw InputError("optimizer spec", spec,
+                     key + ": must be in " + limits::RangeText(min, max) + ", got " +
+                         limits::FormatLimit(number));
+  }
+  return number;
+}
+
+int ParseCount(const std::string& spec, const std::string& key, const std::string& value, int max) {
+  const double number = ParseNumber(spec, key, value);
+  if (number < 1 || number != std::floor(number) || number > max) {
+    throw InputError("optimizer spec", spec,
+                     key + ": must be an integer in [1, " + std::to_string(max) + "]");
   }
   return static_cast<int>(number);
 }
@@ -78,20 +92,21 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
   for (size_t p = 1; p < parts.size(); ++p) {
     const size_t eq = parts[p].find('=');
     if (eq == std::string::npos) {
-      throw InputError("optimizer spec", text, "'" + parts[p] + "' is not key=value");
+      throw InputError("optimizer spec", text, "'" + ClipInput(parts[p]) + "' is not key=value");
     }
     const std::string key = parts[p].substr(0, eq), value = parts[p].substr(eq + 1);
     if (key == "max_iterations" && !spec.none) {
-      spec.options.max_iterations = ParseCount(text, key, value);
+      spec.options.max_iterations = ParseCount(text, key, value, limits::kMaxIterations);
       continue;
     }
     if (spec.projected_newton() || spec.none) {
-      throw InputError("optimizer spec", text, "unknown key '" + key + "' for " + name);
+      throw InputError("optimizer spec", text, "unknown key '" + ClipInput(key) + "' for " + name);
     }
     if (key == "sparse") {
       spec.options.sparse_library = value;
     } else if (key == "radius") {
-      spec.options.initial_trust_region_radius = ParseNumber(text, key, value);
+      spec.options.initial_trust_region_radius = ParseNumberInRange(
+          text, key, value, limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius);
     } else if (key == "backtrack") {
       if (value != "true" && value != "false") {
         throw InputError("optimizer spec", text, "backtrack must be true or false");
@@ -104,16 +119,16 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
     } else if (key == "linear_solver") {
       spec.options.linear_solver = value;
     } else if (key == "threads") {
-      spec.options.num_threads = ParseCount(text, key, value);
+      spec.options.num_threads = ParseCount(text, key, value, limits::kMaxThreads);
     } else if (key == "line_search") {
       spec.options.line_search = value;
     } else if (key == "rank") {
-      spec.options.lbfgs_rank = ParseCount(text, key, value);
+      spec.options.lbfgs_rank = ParseCount(text, key, value, limits::kMaxLbfgsRank);
     } else if (key == "type") {
       spec.options.nonlinear_cg = value;
     } else {
       throw InputError("optimizer spec", text,
-                       "unknown key '" + key +
+                       "unknown key '" + ClipInput(key) +
                            "' (sparse, radius, backtrack, linear_solver, threads, "
                            "max_iterations, line_search, rank, type)");
     }

@@ -13,8 +13,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -25,17 +27,18 @@
 #include <glog/logging.h>
 
 #include "apps/command_line.h"
+#include "apps/program_main.h"
 #include "bench/bench_runner.h"
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
-#include "solver/allocator_tuning.h"
 
 DEFINE_string(scenes, "oscillator", "Comma-separated scene names or JSON paths");
-DEFINE_string(grid_sizes, "0",
-              "Comma-separated grid sizes (nodes per side) for scenes with a grid; 0: the "
-              "scene's. Ignored for scenes without a grid");
+DEFINE_string(grid_sizes, "scene",
+              "Comma-separated grid sizes (nodes per side, 2 to 1000) for scenes with a grid; "
+              "'scene': the scene's own. Ignored for scenes without a grid");
 DEFINE_string(integrators, "backward_euler,newmark",
               "Comma-separated: backward_euler, newmark, quasi_static, symplectic_euler");
 DEFINE_string(optimizers, "newton,lbfgs,projected_newton",
@@ -45,21 +48,26 @@ DEFINE_string(optimizers, "newton,lbfgs,projected_newton",
               "projected_newton (the "
               "Eigen reference, not Ceres). symplectic_euler always runs once with 'none'");
 DEFINE_string(dts, "",
-              "Comma-separated time steps [s]; empty: the scene's time_step x --dt_factors");
+              "Comma-separated time steps [s], each in [1e-12, 1e3]; default: the scene's "
+              "time_step x --dt_factors");
 DEFINE_string(dt_factors, "1", "Comma-separated factors of the scene's time_step (without --dts)");
 DEFINE_string(tolerances, "1e-6", "Comma-separated stopping tolerances [m/s] (keep >= 1e-8)");
 DEFINE_double(t_end, 0.0,
-              "Simulated time [s]; 0: the scene's time_step x steps. Each dt is adjusted to "
-              "t_end / round(t_end / dt) so that all runs end at the same time");
-DEFINE_int32(steps, 0, "If > 0: simulate this many steps of the largest dt (sets t_end)");
-DEFINE_int32(repeats, 3, "Timed runs per configuration (the median is reported)");
-DEFINE_int32(warmup, 1, "Untimed runs before the timed ones");
+              "Simulated time [s], > 0; default: the scene's time_step x steps. Each dt is "
+              "adjusted to t_end / round(t_end / dt) so that all runs end at the same time "
+              "(at most 10000000 steps per run)");
+DEFINE_int32(steps, 0,
+             "Simulate this many steps of the largest dt (sets t_end), in [1, 10000000]; "
+             "default: see --t_end");
+DEFINE_int32(repeats, 3, "Timed runs per configuration (the median is reported), in [1, 1000]");
+DEFINE_int32(warmup, 1, "Untimed runs before the timed ones, in [0, 1000]");
 DEFINE_double(max_run_seconds, 120.0,
-              "A run longer than this stops (status timeout) and is not repeated; 0: no limit");
+              "A run longer than this [s] stops (status timeout) and is not repeated, in [0, "
+              "1e9]; 0: no limit");
 DEFINE_bool(errors, true,
             "Compute errors against the exact solution (oscillator) or a reference run");
 DEFINE_string(reference_optimizer, "projected_newton", "Optimiser spec of the reference runs");
-DEFINE_double(reference_tolerance, 1e-8, "Stopping tolerance of the reference runs [m/s]");
+DEFINE_double(reference_tolerance, 1e-8, "Stopping tolerance of the reference runs [m/s], > 0");
 DEFINE_string(shard, "0/1", "i/N: run only configurations with index % N == i");
 DEFINE_string(output, "bench.csv", "CSV output (with --merge: the merged file)");
 DEFINE_string(merge, "",
@@ -75,16 +83,32 @@ namespace ipstep {
 namespace bench {
 namespace {
 
-std::vector<double> NumberList(const std::string& flag, const std::string& text) {
+// Runs and warm-up runs per configuration: each is a whole trajectory.
+constexpr int kMaxRepeats = 1000;
+
+// A list of numbers > 0 (and <= max).
+std::vector<double> NumberList(const std::string& flag, const std::string& text,
+                               double max = std::numeric_limits<double>::max()) {
   std::vector<double> numbers;
   for (const std::string& item : SplitList(text)) {
     double value = 0.0;
-    if (!ParseFiniteNumber(item, &value) || value <= 0.0) {
-      throw InputError("flag", "--" + flag, "'" + item + "' is not a number > 0");
+    if (!ParseFiniteNumber(item, &value) || value <= 0.0 || value > max) {
+      throw InputError("flag", "--" + flag,
+                       "'" + ClipInput(item) + "' is not a number in " +
+                           limits::RangeText(0.0, max, "", /*min_open=*/true));
     }
     numbers.push_back(value);
   }
   return numbers;
+}
+
+// A time step of the sweep: in the range of --dt (core/input_limits.h).
+void CheckTimeStep(const std::string& flags, double dt) {
+  if (!(dt >= limits::kMinTimeStep && dt <= limits::kMaxTimeStep)) {
+    throw InputError("flag", flags,
+                     "give a time step of " + limits::FormatLimit(dt) + " s; it must be in " +
+                         limits::RangeText(limits::kMinTimeStep, limits::kMaxTimeStep, "s"));
+  }
 }
 
 void ParseShard(const std::string& text, int* index, int* count) {
@@ -101,7 +125,10 @@ void ParseShard(const std::string& text, int* index, int* count) {
       ok = false;
     }
   }
-  if (!ok) throw InputError("flag", "--shard", "must be i/N with 0 <= i < N, got '" + text + "'");
+  if (!ok) {
+    throw InputError("flag", "--shard",
+                     "must be i/N with 0 <= i < N, got '" + ClipInput(text) + "'");
+  }
 }
 
 int Merge() {
@@ -120,8 +147,12 @@ int Merge() {
   std::string header;
   std::multimap<long, std::string> rows;
   for (const std::string& file : files) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error)) {
+      throw InputError("flag", "--merge", "'" + ClipInput(file) + "' is not a regular file");
+    }
     std::ifstream in(file);
-    if (!in) throw InputError("flag", "--merge", "cannot read '" + file + "'");
+    if (!in) throw InputError("flag", "--merge", "cannot read '" + ClipInput(file) + "'");
     std::string line;
     if (!std::getline(in, line)) throw InputError("flag", "--merge", "'" + file + "' is empty");
     if (header.empty()) header = line;
@@ -154,11 +185,19 @@ int Run() {
   if (!FLAGS_merge.empty()) return Merge();
   int shard = 0, shards = 1;
   ParseShard(FLAGS_shard, &shard, &shards);
-  if (FLAGS_repeats < 1) throw InputError("flag", "--repeats", "must be >= 1");
-  if (FLAGS_warmup < 0) throw InputError("flag", "--warmup", "must be >= 0");
-  if (FLAGS_steps < 0) throw InputError("flag", "--steps", "must be >= 0");
-  if (!(FLAGS_t_end >= 0.0) || !std::isfinite(FLAGS_t_end)) {
-    throw InputError("flag", "--t_end", "must be >= 0 (0: the scene's)");
+  CheckFlagRange("repeats", FLAGS_repeats, 1, kMaxRepeats, "");
+  CheckFlagRange("warmup", FLAGS_warmup, 0, kMaxRepeats, "");
+  // --steps and --t_end: 0 is their unset value, not an explicit choice.
+  if (!FlagIsDefault("steps")) {
+    CheckFlagRange("steps", FLAGS_steps, 1, limits::kMaxSteps, "the scene's time_step x steps");
+  }
+  if (!FlagIsDefault("t_end")) {
+    CheckFlagRange("t_end", FLAGS_t_end, 0.0, limits::kMaxSteps * limits::kMaxTimeStep, "s",
+                   "the scene's time_step x steps", /*min_open=*/true);
+  }
+  CheckFlagRange("max_run_seconds", FLAGS_max_run_seconds, 0.0, limits::kMaxTimeLimit, "s", "");
+  if (!(FLAGS_reference_tolerance > 0.0) || !std::isfinite(FLAGS_reference_tolerance)) {
+    throw InputError("flag", "--reference_tolerance", "must be a finite number > 0");
   }
   const std::vector<std::string> scenes = SplitList(FLAGS_scenes);
   const std::vector<std::string> integrators = SplitList(FLAGS_integrators);
@@ -166,9 +205,16 @@ int Run() {
   const std::vector<double> tolerances = NumberList("tolerances", FLAGS_tolerances);
   std::vector<int> grid_sizes;
   for (const std::string& item : SplitList(FLAGS_grid_sizes)) {
+    if (item == "scene") {
+      grid_sizes.push_back(0);  // RunConfig::grid_size 0: the scene's
+      continue;
+    }
     const int size = std::atoi(item.c_str());
-    if (std::to_string(size) != item || size < 0 || size == 1) {
-      throw InputError("flag", "--grid_sizes", "'" + item + "' is not 0 or an integer >= 2");
+    if (std::to_string(size) != item || size < 2 || size > limits::kMaxGridSize) {
+      throw InputError("flag", "--grid_sizes",
+                       "'" + ClipInput(item) + "' is not an integer in [2, " +
+                           std::to_string(limits::kMaxGridSize) +
+                           "] or 'scene' (the scene's own size)");
     }
     grid_sizes.push_back(size);
   }
@@ -199,16 +245,30 @@ int Run() {
         sizes.insert(0);  // no grid: the size does not apply
       }
     }
-    std::vector<double> dts = NumberList("dts", FLAGS_dts);
+    std::vector<double> dts = NumberList("dts", FLAGS_dts, limits::kMaxTimeStep);
+    for (double dt : dts) CheckTimeStep("--dts", dt);
     if (dts.empty()) {
-      for (double f : NumberList("dt_factors", FLAGS_dt_factors))
+      for (double f : NumberList("dt_factors", FLAGS_dt_factors)) {
         dts.push_back(scene.time_step * f);
+        CheckTimeStep("--dt_factors", dts.back());
+      }
     }
     if (dts.empty()) throw InputError("flag", "--dts/--dt_factors", "no time step");
     const double dt_max = *std::max_element(dts.begin(), dts.end());
     double t_end = FLAGS_t_end > 0.0 ? FLAGS_t_end : scene.time_step * scene.steps;
     if (FLAGS_steps > 0) t_end = FLAGS_steps * dt_max;
-    for (double& dt : dts) dt = t_end / std::max(1.0, std::round(t_end / dt));
+    for (double& dt : dts) {
+      const double steps = std::max(1.0, std::round(t_end / dt));
+      if (!(steps <= limits::kMaxSteps)) {
+        throw InputError("flag", "--t_end/--steps/--dts/--dt_factors",
+                         "scene " + ClipInput(name) + ": t_end " + limits::FormatLimit(t_end) +
+                             " s at dt " + limits::FormatLimit(dt) + " s is " +
+                             limits::FormatLimit(steps) + " steps, more than " +
+                             std::to_string(limits::kMaxSteps));
+      }
+      dt = t_end / steps;
+      CheckTimeStep("--t_end/--steps/--dts/--dt_factors", dt);
+    }
     for (int size : sizes) setups.push_back({name, size, t_end, dts});
   }
 
@@ -335,23 +395,8 @@ int Run() {
 }  // namespace ipstep
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
-      "ipstep_bench --scenes=... --integrators=... --optimizers=... "
-      "[--dts|--dt_factors] [--tolerances] [--shard=i/N] --output=FILE.csv");
-  FLAGS_logtostderr = true;
-  ipstep::KeepLargeAllocations();  // as the ipstep programs (solver/allocator_tuning.h)
-  try {
-    ipstep::CheckCommandLine(argc, argv);
-  } catch (const ipstep::InputError& e) {
-    std::fprintf(stderr, "ipstep_bench: error: %s\n", e.what());
-    return ipstep::kInputErrorExitCode;
-  }
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
-  google::InitGoogleLogging(argv[0]);
-  try {
-    return ipstep::bench::Run();
-  } catch (const ipstep::InputError& e) {
-    std::fprintf(stderr, "ipstep_bench: error: %s\n", e.what());
-    return ipstep::kInputErrorExitCode;
-  }
+  return ipstep::ProgramMain(argc, argv, "ipstep_bench",
+                             "ipstep_bench --scenes=... --integrators=... --optimizers=... "
+                             "[--dts|--dt_factors] [--tolerances] [--shard=i/N] --output=FILE.csv",
+                             ipstep::bench::Run);
 }

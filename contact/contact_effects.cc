@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -14,6 +15,7 @@
 #include "contact/contact_overrides.h"
 #include "contact/contact_surface.h"
 #include "core/input_error.h"
+#include "core/input_limits.h"
 
 namespace ipstep {
 
@@ -65,9 +67,14 @@ class Param {
     if (!std::isfinite(v)) Fail("must be finite");
     return v;
   }
-  double Positive() const {
+  // A number in [min, max] (or (min, max] with `min_open`).
+  double InRange(double min, double max, const std::string& unit, bool min_open = false,
+                 const std::string& note = "") const {
     const double v = Number();
-    if (!(v > 0.0)) Fail("must be > 0, got " + Format(v));
+    if (!(min_open ? v > min : v >= min) || !(v <= max)) {
+      Fail("must be in " + limits::RangeText(min, max, unit, min_open) + note + ", got " +
+           Format(v));
+    }
     return v;
   }
   bool Bool() const {
@@ -87,15 +94,20 @@ class Param {
     }
     return static_cast<int>(v);
   }
-  Eigen::Vector3d Vector(int dimension) const {
+  // `dimension` numbers, each in [-bound, bound].
+  Eigen::Vector3d Vector(int dimension, double bound, const std::string& unit) const {
     if (!value_.is_array() || static_cast<int>(value_.size()) != dimension) {
       Fail("must be an array of " + std::to_string(dimension) + " numbers (the scene's dimension)");
     }
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
     for (int k = 0; k < dimension; ++k) {
-      v[k] = Param(value_[k], path_ + "[" + std::to_string(k) + "]", source_).Number();
+      v[k] = Param(value_[k], path_ + "[" + std::to_string(k) + "]", source_)
+                 .InRange(-bound, bound, unit);
     }
     return v;
+  }
+  Eigen::Vector3d Position(int dimension) const {
+    return Vector(dimension, limits::kMaxCoordinate, "m");
   }
   std::vector<Param> Elements() const {
     if (!value_.is_array()) Fail("must be an array");
@@ -122,30 +134,35 @@ Obstacle ReadObstacle(const Param& p, int dimension) {
   if (type == "plane") {
     p.ExpectObject({"type", "point", "normal", "velocity"});
     o.type = ObstacleType::kPlane;
-    o.point = p.Get("point").Vector(dimension);
-    const Eigen::Vector3d normal = p.Get("normal").Vector(dimension);
-    if (!(normal.norm() > 0.0)) p.Get("normal").Fail("must not be the zero vector");
-    o.normal = normal.normalized();
+    o.point = p.Get("point").Position(dimension);
+    const Eigen::Vector3d normal =
+        p.Get("normal").Vector(dimension, std::numeric_limits<double>::max(), "");
+    // stableNorm: |normal|^2 must not overflow (normal [1e300, 1e300]) or underflow.
+    const double length = normal.stableNorm();
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      p.Get("normal").Fail("must not be the zero vector");
+    }
+    o.normal = normal / length;
   } else if (type == "sphere" || type == "circle") {
     p.ExpectObject({"type", "center", "radius", "velocity"});
     o.type = ObstacleType::kSphere;
-    o.point = p.Get("center").Vector(dimension);
-    o.radius = p.Get("radius").Positive();
+    o.point = p.Get("center").Position(dimension);
+    o.radius = p.Get("radius").InRange(limits::kMinLength, limits::kMaxCoordinate, "m");
   } else if (type == "box") {
     p.ExpectObject({"type", "min", "max", "velocity"});
     o.type = ObstacleType::kBox;
-    o.lower = p.Get("min").Vector(dimension);
-    o.upper = p.Get("max").Vector(dimension);
+    o.lower = p.Get("min").Position(dimension);
+    o.upper = p.Get("max").Position(dimension);
     for (int k = 0; k < dimension; ++k) {
       if (!(o.upper[k] > o.lower[k])) {
         p.Get("max").Fail("must be greater than \"min\" in every component");
       }
     }
   } else {
-    p.Get("type").Fail("unknown obstacle type \"" + type +
+    p.Get("type").Fail("unknown obstacle type \"" + ClipInput(type) +
                        "\" (known: plane, sphere, circle, box)");
   }
-  if (p.Has("velocity")) o.velocity = p.Get("velocity").Vector(dimension);
+  if (p.Has("velocity")) o.velocity = p.Get("velocity").Vector(dimension, limits::kMaxSpeed, "m/s");
   return o;
 }
 
@@ -175,14 +192,11 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
   p.ExpectObject({"dhat", "kappa", "obstacles", "self_contact"});
   ContactOptions options;
   const double diagonal = BoundingBoxDiagonal(scene);
-  options.d_hat = p.Has("dhat") ? p.Get("dhat").Positive() : 1e-3 * std::max(diagonal, 1.0);
+  options.d_hat = p.Has("dhat") ? p.Get("dhat").InRange(limits::kMinDhat, limits::kMaxDhat, "m")
+                                : 1e-3 * std::max(diagonal, 1.0);
   if (p.Has("kappa")) {
-    const Param kappa = p.Get("kappa");
-    const double value = kappa.Number();
-    if (!(value > 0.0)) {
-      kappa.Fail("must be > 0 (omit it for the adaptive stiffness), got " + Format(value));
-    }
-    options.kappa = value;
+    options.kappa = p.Get("kappa").InRange(0.0, limits::kMaxKappa, "", /*min_open=*/true,
+                                           " (omit it for the adaptive stiffness)");
   }
   if (p.Has("obstacles")) {
     for (const Param& element : p.Get("obstacles").Elements()) {
@@ -233,11 +247,14 @@ std::string BuildFriction(TermBuilder& builder, const json& parameters) {
   const Param p(parameters, "friction", source);
   p.ExpectObject({"mu", "epsilon_v", "iterations"});
   FrictionOptions options;
-  const Param mu = p.Get("mu");
-  options.mu = mu.Number();
-  if (!(options.mu >= 0.0)) mu.Fail("must be >= 0, got " + Format(options.mu));
-  if (p.Has("epsilon_v")) options.epsilon_v = p.Get("epsilon_v").Positive();
-  if (p.Has("iterations")) options.iterations = p.Get("iterations").Integer(1, 100);
+  options.mu = p.Get("mu").InRange(0.0, limits::kMaxFrictionMu, "");
+  if (p.Has("epsilon_v")) {
+    options.epsilon_v =
+        p.Get("epsilon_v").InRange(limits::kMinEpsilonV, limits::kMaxEpsilonV, "m/s");
+  }
+  if (p.Has("iterations")) {
+    options.iterations = p.Get("iterations").Integer(1, limits::kMaxFrictionIterations);
+  }
   const ContactOverrides overrides = CurrentContactOverrides();
   if (overrides.mu) options.mu = *overrides.mu;
   if (overrides.friction_iterations) options.iterations = *overrides.friction_iterations;

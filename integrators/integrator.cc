@@ -1,7 +1,9 @@
 #include "integrators/integrator.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "core/input_error.h"
 #include "integrators/backward_euler.h"
@@ -15,6 +17,16 @@ void Integrator::Advance(const Eigen::VectorXd&, double, State*) const {
   throw std::logic_error(name() + " is not an explicit integrator");
 }
 
+namespace {
+
+std::string FormatParameter(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.6g", value);
+  return buffer;
+}
+
+}  // namespace
+
 const char* IntegratorNames() { return "backward_euler, newmark, quasi_static, symplectic_euler"; }
 
 std::unique_ptr<Integrator> MakeIntegrator(const IntegratorOptions& o) {
@@ -22,14 +34,19 @@ std::unique_ptr<Integrator> MakeIntegrator(const IntegratorOptions& o) {
   if (o.name == "quasi_static") return std::make_unique<QuasiStatic>();
   if (o.name == "symplectic_euler") return std::make_unique<SymplecticEuler>();
   if (o.name == "newmark") {
-    if (!std::isfinite(o.newmark_beta) || o.newmark_beta <= 0.0 || o.newmark_beta > 1.0) {
+    // The ranges and why: integrators/newmark.h.
+    if (!(o.newmark_beta >= Newmark::kMinBeta && o.newmark_beta <= Newmark::kMaxBeta)) {
       throw InputError("flag", "--newmark_beta",
-                       "must be in (0, 1], got " + std::to_string(o.newmark_beta) +
-                           " (beta = 0 is explicit central differences, not a minimisation)");
+                       "must be in [1e-3, 1], got " + FormatParameter(o.newmark_beta) +
+                           " (beta -> 0 is the explicit central-difference scheme: the step "
+                           "solves for beta h^2 times the acceleration, which round-off swamps; "
+                           "use --integrator=symplectic_euler for an explicit method)");
     }
-    if (!std::isfinite(o.newmark_gamma) || o.newmark_gamma <= 0.0 || o.newmark_gamma > 1.0) {
+    if (!(o.newmark_gamma >= Newmark::kMinGamma && o.newmark_gamma <= Newmark::kMaxGamma)) {
       throw InputError("flag", "--newmark_gamma",
-                       "must be in (0, 1], got " + std::to_string(o.newmark_gamma));
+                       "must be in [0.5, 1], got " + FormatParameter(o.newmark_gamma) +
+                           " (gamma < 1/2 amplifies every oscillation at every step size; 1/2 "
+                           "is the trapezoidal rule, larger values dissipate)");
     }
     return std::make_unique<Newmark>(o.newmark_beta, o.newmark_gamma);
   }

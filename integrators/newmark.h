@@ -8,7 +8,25 @@
 // equation of motion). beta = 1/4, gamma = 1/2 is the trapezoidal rule: second
 // order, energy-conserving on linear problems, period elongated by
 // Omega / (2 atan(Omega/2)); gamma > 1/2 adds numerical dissipation.
-// beta must be > 0 (beta = 0 is the explicit central-difference scheme).
+//
+// Parameter ranges (MakeIntegrator rejects anything else, naming the flags):
+//  * beta in [1e-3, 1]. beta = 0 is the explicit central-difference scheme,
+//    which is not a minimisation; as beta -> 0 the step solves for
+//    x - x_hat = beta h^2 a_{n+1} and recovers a_{n+1} by dividing by beta h^2,
+//    so round-off in x (~1e-16 |x|) becomes an acceleration error growing as
+//    1/beta, the weights beta h^2 and beta^2 h^3 / gamma approach underflow
+//    (1e-300 was accepted and every step "converged" to a wrong motion), and
+//    the stopping rule measures forces scaled by 1/(beta h^2). At 1e-3 three
+//    digits are lost relative to beta = 1/4. For an explicit method use
+//    symplectic_euler. The upper bound 1 is generous: beta >= gamma / 2 (at
+//    most 1/2) already gives unconditional stability, larger beta only adds
+//    period error.
+//  * gamma in [1/2, 1]. gamma < 1/2 is numerical anti-damping: the amplification
+//    factor exceeds 1 at every step size, so every run grows without bound.
+//    gamma = 1/2 conserves energy on linear problems, larger gamma dissipates;
+//    beyond 1 the method is only more dissipative and first order.
+//  Unconditional stability additionally needs beta >= gamma / 2; smaller beta
+//  is conditionally stable (like symplectic Euler) and is allowed.
 #pragma once
 
 #include "integrators/integrator.h"
@@ -47,6 +65,11 @@ class Newmark : public Integrator {
   double impulsive_energy_factor() const override { return 2.0 * beta_; }
   void UpdateWithImpulses(const Eigen::VectorXd& x_next, const Eigen::VectorXd& impulsive_forces,
                           double h, State* state) const override;
+
+  static constexpr double kMinBeta = 1e-3;
+  static constexpr double kMaxBeta = 1.0;
+  static constexpr double kMinGamma = 0.5;
+  static constexpr double kMaxGamma = 1.0;
 
   double beta() const { return beta_; }
   double gamma() const { return gamma_; }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 
 namespace ipstep {
 namespace internal {
@@ -34,6 +35,10 @@ using nlohmann::json;
 // Upper bound on the number of nodes, so that a typo such as "nx": 200000
 // gives an error instead of exhausting memory.
 constexpr int64_t kMaxNodes = 1000000;
+
+// Upper bound on the size of a scene file (a 1000 x 1000 grid written out as
+// explicit nodes and springs takes about 100 MB).
+constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
 
 constexpr char kOneNodeSource[] =
     "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\"";
@@ -64,7 +69,8 @@ std::string Join(const std::vector<std::string>& items, const std::string& separ
   return joined;
 }
 
-std::string Quoted(const std::string& text) { return "\"" + text + "\""; }
+// A name from the input, quoted and cut for a message.
+std::string Quoted(const std::string& text) { return "\"" + ClipInput(text) + "\""; }
 
 // Shortest decimal form that reads back as the same double.
 std::string FormatNumber(double value) {
@@ -173,16 +179,26 @@ class JsonNode {
     if (!value_->is_string()) Fail("must be a string, got " + Describe(*value_));
     return value_->get<std::string>();
   }
-  // An array of `size` finite numbers (a point or vector in `size` dimensions).
-  std::vector<double> Vector(int size) const {
+  // An array of `size` finite numbers (a point or vector in `size` dimensions),
+  // each in [-bound, bound] (`unit` for the message).
+  std::vector<double> Vector(int size, double bound, const std::string& unit) const {
     if (!value_->is_array() || static_cast<int>(value_->size()) != size) {
       Fail("must be an array of " + std::to_string(size) +
            " numbers (the scene's dimension), got " + Describe(*value_));
     }
     std::vector<double> vector;
-    for (const JsonNode& element : Elements()) vector.push_back(element.Number());
+    for (const JsonNode& element : Elements()) {
+      const double number = element.Number();
+      if (!(std::abs(number) <= bound)) {
+        element.Fail("must be in " + limits::RangeText(-bound, bound, unit) + ", got " +
+                     FormatNumber(number));
+      }
+      vector.push_back(number);
+    }
     return vector;
   }
+  std::vector<double> Position(int size) const { return Vector(size, limits::kMaxCoordinate, "m"); }
+  std::vector<double> Velocity(int size) const { return Vector(size, limits::kMaxSpeed, "m/s"); }
 
  private:
   const json* value_;
@@ -196,10 +212,23 @@ double ReadPositive(const JsonNode& node) {
   return number;
 }
 
-double ReadNonNegative(const JsonNode& node) {
+// A number in [min, max] (or (min, max] with `min_open`).
+double ReadInRange(const JsonNode& node, double min, double max, const std::string& unit,
+                   bool min_open = false) {
   const double number = node.Number();
-  if (!(number >= 0)) node.Fail("must be >= 0, got " + FormatNumber(number));
+  if (!(min_open ? number > min : number >= min) || !(number <= max)) {
+    node.Fail("must be in " + limits::RangeText(min, max, unit, min_open) + ", got " +
+              FormatNumber(number));
+  }
   return number;
+}
+
+double ReadStiffness(const JsonNode& node) {
+  return ReadInRange(node, 0.0, limits::kMaxStiffness, "", /*min_open=*/true);
+}
+
+double ReadMass(const JsonNode& node) {
+  return ReadInRange(node, limits::kMinMass, limits::kMaxMass, "kg");
 }
 
 int ReadIntInRange(const JsonNode& node, int64_t min, int64_t max) {
@@ -220,13 +249,23 @@ SpringModel ReadSpringModel(const JsonNode& node) {
   node.Fail("unknown spring model " + Quoted(name) + " (known: hookean, squared_strain, quartic)");
 }
 
-// Removes nlohmann's "[json.exception.parse_error.101] " prefix.
+// Removes nlohmann's "[json.exception.parse_error.101] " prefix and cuts the
+// input it quotes ("last read: '...'", "number overflow parsing '...'").
 std::string WithoutExceptionId(const std::string& message) {
-  if (!message.empty() && message.front() == '[') {
-    const size_t end = message.find("] ");
-    if (end != std::string::npos) return message.substr(end + 2);
+  std::string text = message;
+  if (!text.empty() && text.front() == '[') {
+    const size_t end = text.find("] ");
+    if (end != std::string::npos) text = text.substr(end + 2);
   }
-  return message;
+  for (const char* marker : {"last read: '", "parsing '"}) {
+    const size_t start = text.find(marker);
+    const size_t end = text.rfind('\'');
+    if (start == std::string::npos) continue;
+    const size_t from = start + std::strlen(marker);
+    if (end == std::string::npos || end < from) continue;
+    text = text.substr(0, from) + ClipInput(text.substr(from, end - from)) + text.substr(end);
+  }
+  return ClipInput(text, 4 * kMaxEchoedInput);
 }
 
 // Follows the key path while nlohmann parses, so that parse errors can say
@@ -289,19 +328,37 @@ class KeyPathTracker {
   std::vector<Frame> frames_;
 };
 
+// Reads a scene file: a regular file (not a directory, device or pipe such as
+// /dev/zero, which never ends) of at most kMaxSceneFileBytes.
 std::string ReadTextFile(const std::string& path) {
+  namespace fs = std::filesystem;
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) {
     throw InputError(path + ": cannot read scene file: is a directory");
+  }
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    throw InputError(path + ": cannot read scene file: not a regular file");
+  }
+  const std::string too_large = path + ": cannot read scene file: larger than the limit of " +
+                                std::to_string(kMaxSceneFileBytes >> 20) + " MiB";
+  if (fs::exists(status) && fs::file_size(path, error) > kMaxSceneFileBytes && !error) {
+    throw InputError(too_large);
   }
   std::ifstream file(path, std::ios::binary);
   if (!file) {
     throw InputError(path + ": cannot open scene file: " + std::strerror(errno));
   }
-  std::ostringstream text;
-  text << file.rdbuf();
+  // Read with the limit as well: the file may grow, or report no size (procfs).
+  std::string text;
+  std::vector<char> buffer(1 << 16);
+  while (file.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) ||
+         file.gcount() > 0) {
+    text.append(buffer.data(), static_cast<size_t>(file.gcount()));
+    if (text.size() > kMaxSceneFileBytes) throw InputError(too_large);
+  }
   if (file.bad()) throw InputError(path + ": cannot read scene file: " + std::strerror(errno));
-  return text.str();
+  return text;
 }
 
 std::string BuiltinSource(const std::string& name) { return "problems/" + name + ".json"; }
@@ -367,9 +424,11 @@ class SceneParser {
     if (auto dimension = root.Find("dimension")) {
       scene_.dimension = ReadIntInRange(*dimension, 2, 3);
     }
-    if (auto time_step = root.Find("time_step")) scene_.time_step = ReadPositive(*time_step);
+    if (auto time_step = root.Find("time_step")) {
+      scene_.time_step = ReadInRange(*time_step, limits::kMinTimeStep, limits::kMaxTimeStep, "s");
+    }
     if (auto steps = root.Find("steps")) {
-      scene_.steps = ReadIntInRange(*steps, 0, std::numeric_limits<int>::max());
+      scene_.steps = ReadIntInRange(*steps, 0, limits::kMaxSteps);
     }
   }
 
@@ -428,9 +487,10 @@ class SceneParser {
     }
     for (int i = 0; i < num_nodes(); ++i) {
       for (int k = 0; k < dim(); ++k) {
-        if (!std::isfinite(scene_.positions[dim() * i + k])) {
-          generator.Fail("the position of node " + std::to_string(i) +
-                         " is not finite (sizes or coordinates too large)");
+        if (!(std::abs(scene_.positions[dim() * i + k]) <= limits::kMaxCoordinate)) {
+          generator.Fail("the position of node " + std::to_string(i) + " is outside " +
+                         limits::RangeText(-limits::kMaxCoordinate, limits::kMaxCoordinate, "m") +
+                         " (sizes or coordinates too large)");
         }
       }
     }
@@ -446,7 +506,7 @@ class SceneParser {
 
   // Gives node `index` its own initial velocity, read from `velocity`.
   void SetOwnVelocity(int index, const JsonNode& velocity) {
-    const std::vector<double> v = velocity.Vector(dim());
+    const std::vector<double> v = velocity.Velocity(dim());
     std::copy(v.begin(), v.end(), scene_.velocities.begin() + dim() * index);
     velocity_paths_[index] = velocity.path();
   }
@@ -455,8 +515,8 @@ class SceneParser {
   void ReadParticle(const JsonNode& particle) {
     layout_ = Layout::kParticle;
     particle.ExpectObject({"position", "mass", "velocity"});
-    const std::vector<double> position = particle.Get("position").Vector(dim());
-    AddNode(position, ReadPositive(particle.Get("mass")));
+    const std::vector<double> position = particle.Get("position").Position(dim());
+    AddNode(position, ReadMass(particle.Get("mass")));
     if (auto velocity = particle.Find("velocity")) SetOwnVelocity(0, *velocity);
   }
 
@@ -474,7 +534,7 @@ class SceneParser {
     const int count = static_cast<int>(entries.size());
     const std::vector<double> masses =
         ReadMasses(nodes, {"masses", "mass", "total_mass"}, 0, count);
-    for (int i = 0; i < count; ++i) AddNode(entries[i].Vector(dim()), masses[i]);
+    for (int i = 0; i < count; ++i) AddNode(entries[i].Position(dim()), masses[i]);
     if (auto velocities = nodes.Find("velocities")) {
       const std::vector<JsonNode> list = velocities->Elements();
       if (static_cast<int>(list.size()) != count) {
@@ -510,16 +570,17 @@ class SceneParser {
                     std::to_string(list.size()));
       }
       std::vector<double> masses;
-      for (const JsonNode& mass : list) masses.push_back(ReadPositive(mass));
+      for (const JsonNode& mass : list) masses.push_back(ReadMass(mass));
       return masses;
     }
+    if (key == "mass") return std::vector<double>(count, ReadMass(*given));
     const double value = ReadPositive(*given);
     double mass = value;
     if (key == "total_mass") mass = value / static_cast<double>(count);
     if (key == "density") mass = value * measure / static_cast<double>(count);
-    if (!(mass > 0) || !std::isfinite(mass)) {
-      given->Fail("gives each node a mass of " + FormatNumber(mass) +
-                  ", which must be finite and > 0");
+    if (!(mass >= limits::kMinMass && mass <= limits::kMaxMass)) {
+      given->Fail("gives each node a mass of " + FormatNumber(mass) + " kg, which must be in " +
+                  limits::RangeText(limits::kMinMass, limits::kMaxMass, "kg"));
     }
     return std::vector<double>(count, mass);
   }
@@ -528,9 +589,9 @@ class SceneParser {
     layout_ = Layout::kChain;
     chain.ExpectObject({"count", "from", "to", "mass", "total_mass", "density", "spring"});
     const int count = ReadIntInRange(chain.Get("count"), 2, kMaxNodes);
-    const std::vector<double> from = chain.Get("from").Vector(dim());
+    const std::vector<double> from = chain.Get("from").Position(dim());
     const JsonNode to_node = chain.Get("to");
-    const std::vector<double> to = to_node.Vector(dim());
+    const std::vector<double> to = to_node.Position(dim());
     double length = 0.0;
     for (int k = 0; k < dim(); ++k) length += (to[k] - from[k]) * (to[k] - from[k]);
     length = std::sqrt(length);
@@ -574,7 +635,7 @@ class SceneParser {
     const double width = ReadPositive(grid.Get("width"));
     const double height = ReadPositive(grid.Get("height"));
     std::vector<double> origin(dim(), 0.0);
-    if (auto node = grid.Find("origin")) origin = node->Vector(dim());
+    if (auto node = grid.Find("origin")) origin = node->Position(dim());
 
     // The grid spans axis u (columns, width) and axis v (rows, height).
     int u = 0;
@@ -655,7 +716,7 @@ class SceneParser {
     RequireEffect(node, "springs");
     node.ExpectObject({"model", "stiffness"});
     return SpringFamily{node.path(), ReadSpringModel(node.Get("model")),
-                        ReadPositive(node.Get("stiffness"))};
+                        ReadStiffness(node.Get("stiffness"))};
   }
 
   double Distance(int i, int j) const {
@@ -669,11 +730,12 @@ class SceneParser {
 
   void AddGeneratedSpring(const SpringFamily& family, int i, int j) {
     const double length = Distance(i, j);
-    if (!(length > 0) || !std::isfinite(length)) {
+    if (!(length >= limits::kMinLength && length <= limits::kMaxLength)) {
       throw InputError(source_, family.path,
                        "the spring between nodes " + std::to_string(i) + " and " +
                            std::to_string(j) + " would have rest length " + FormatNumber(length) +
-                           "; it must be finite and > 0");
+                           " m; it must be in " +
+                           limits::RangeText(limits::kMinLength, limits::kMaxLength, "m"));
     }
     scene_.springs.push_back(Spring{i, j, family.model, family.stiffness, length});
   }
@@ -701,9 +763,9 @@ class SceneParser {
       nodes.Fail("must name two different nodes, got node " + std::to_string(spring.i) + " twice");
     }
     spring.model = ReadSpringModel(entry.Get("model"));
-    spring.stiffness = ReadPositive(entry.Get("stiffness"));
+    spring.stiffness = ReadStiffness(entry.Get("stiffness"));
     if (auto rest_length = entry.Find("rest_length")) {
-      spring.rest_length = ReadPositive(*rest_length);
+      spring.rest_length = ReadInRange(*rest_length, limits::kMinLength, limits::kMaxLength, "m");
     } else {
       spring.rest_length = Distance(spring.i, spring.j);
       if (!(spring.rest_length > 0)) {
@@ -714,6 +776,13 @@ class SceneParser {
       if (!std::isfinite(spring.rest_length)) {
         entry.FailAt(entry.ChildPath("rest_length"),
                      "is required: the initial length is not finite");
+      }
+      if (!(spring.rest_length >= limits::kMinLength && spring.rest_length <= limits::kMaxLength)) {
+        entry.FailAt(entry.ChildPath("rest_length"),
+                     "the initial distance of nodes " + std::to_string(spring.i) + " and " +
+                         std::to_string(spring.j) + " is " + FormatNumber(spring.rest_length) +
+                         " m; a rest length must be in " +
+                         limits::RangeText(limits::kMinLength, limits::kMaxLength, "m"));
       }
     }
     scene_.springs.push_back(spring);
@@ -781,7 +850,7 @@ class SceneParser {
   void ReadGravity(const JsonNode& root) {
     if (auto gravity = root.Find("gravity")) {
       RequireEffect(*gravity, "gravity");
-      scene_.gravity = gravity->Vector(dim());
+      scene_.gravity = gravity->Vector(dim(), limits::kMaxAcceleration, "m/s^2");
     } else if (scene_.HasEffect("gravity")) {
       root.FailAt("gravity", "is missing but \"effects\" lists \"gravity\" (" +
                                  effect_paths_.at("gravity") + ")");
@@ -800,10 +869,11 @@ class SceneParser {
     RequireEffect(*damping, "damping");
     damping->ExpectObject({"mass_proportional", "stiffness_proportional"});
     if (auto alpha = damping->Find("mass_proportional")) {
-      scene_.damping.mass_proportional = ReadNonNegative(*alpha);
+      scene_.damping.mass_proportional = ReadInRange(*alpha, 0.0, limits::kMaxMassDamping, "1/s");
     }
     if (auto beta = damping->Find("stiffness_proportional")) {
-      scene_.damping.stiffness_proportional = ReadNonNegative(*beta);
+      scene_.damping.stiffness_proportional =
+          ReadInRange(*beta, 0.0, limits::kMaxStiffnessDamping, "s");
       if (scene_.damping.stiffness_proportional > 0 && !scene_.HasEffect("springs")) {
         beta->Fail("has no effect without the \"springs\" effect");
       }
@@ -828,7 +898,7 @@ class SceneParser {
   void ReadInitialVelocity(const JsonNode& root) {
     auto velocity = root.Find("initial_velocity");
     if (!velocity) return;
-    const std::vector<double> v = velocity->Vector(dim());
+    const std::vector<double> v = velocity->Velocity(dim());
     bool used = false;
     for (int i = 0; i < num_nodes(); ++i) {
       if (!velocity_paths_[i].empty()) continue;  // a node's own velocity wins
@@ -859,7 +929,7 @@ class SceneParser {
       entry.ExpectObject({"node", "velocity"});
       const JsonNode reference = entry.Get("node");
       const std::vector<int> nodes = ReadNodeReference(reference);
-      const std::vector<double> velocity = entry.Get("velocity").Vector(dim());
+      const std::vector<double> velocity = entry.Get("velocity").Velocity(dim());
       for (int node : nodes) {
         if (pinned_by_.count(node) != 0) {
           reference.Fail("node " + std::to_string(node) + " is pinned by " + pinned_by_[node] +
@@ -915,6 +985,13 @@ class SceneParser {
 
 Scene ParseScene(const std::string& text, const std::string& source,
                  const SceneLoadOptions& options) {
+  // nlohmann stops at a NUL byte as at the end of the input, which would
+  // accept a valid scene followed by anything; JSON text never contains one.
+  const size_t nul = text.find('\0');
+  if (nul != std::string::npos) {
+    throw InputError(source + ": malformed JSON: NUL byte at offset " + std::to_string(nul) +
+                     " (a JSON text cannot contain one)");
+  }
   KeyPathTracker tracker(source);
   json document;
   try {
@@ -923,8 +1000,9 @@ Scene ParseScene(const std::string& text, const std::string& source,
     });
   } catch (const json::parse_error& error) {
     const std::string path = tracker.CurrentPath();
-    throw InputError(source + ": malformed JSON" + (path.empty() ? "" : " (near " + path + ")") +
-                     ": " + WithoutExceptionId(error.what()));
+    throw InputError(source + ": malformed JSON" +
+                     (path.empty() ? "" : " (near " + ClipInput(path) + ")") + ": " +
+                     WithoutExceptionId(error.what()));
   } catch (const json::out_of_range& error) {
     // A number such as 1e400, read as the value at CurrentPath().
     throw InputError(source, tracker.CurrentPath(),
@@ -964,20 +1042,25 @@ std::string BuiltinSceneText(const std::string& name) {
   const auto& texts = internal::BuiltinSceneTexts();
   const auto found = texts.find(name);
   if (found == texts.end()) {
-    throw InputError(name + ": unknown built-in scene (built-in scenes: " + BuiltinNameList() +
-                     ")");
+    throw InputError(ClipInput(name) +
+                     ": unknown built-in scene (built-in scenes: " + BuiltinNameList() + ")");
   }
   return found->second;
 }
 
 Scene LoadScene(const std::string& name_or_path, const SceneLoadOptions& options) {
+  if (name_or_path.empty()) {
+    throw InputError("scene: the name is empty: give a built-in scene (" + BuiltinNameList() +
+                     ") or a JSON file");
+  }
   if (IsBuiltinScene(name_or_path)) {
     return ParseScene(BuiltinSceneText(name_or_path), BuiltinSource(name_or_path), options);
   }
   std::error_code error;
   if (std::filesystem::exists(name_or_path, error)) return LoadSceneFile(name_or_path, options);
-  throw InputError(name_or_path + ": no such scene file, and not a built-in scene (built-in " +
-                   "scenes: " + BuiltinNameList() + ")");
+  throw InputError(ClipInput(name_or_path) +
+                   ": no such scene file, and not a built-in scene (built-in scenes: " +
+                   BuiltinNameList() + ")");
 }
 
 }  // namespace ipstep

@@ -9,6 +9,7 @@
 #include <glog/logging.h>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "energies/effect_registry.h"
 #include "energies/inertia.h"
 #include "energies/term_builder.h"
@@ -20,8 +21,16 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
     : scene_(scene), options_(options) {
   time_step_ = options.time_step > 0.0 ? options.time_step : scene.time_step;
   steps_ = options.steps >= 0 ? options.steps : scene.steps;
-  if (!std::isfinite(time_step_) || time_step_ <= 0.0) {
-    throw InputError("flag", "--dt", "must be a finite number > 0");
+  if (!(time_step_ >= limits::kMinTimeStep && time_step_ <= limits::kMaxTimeStep)) {
+    throw InputError("flag", "--dt",
+                     "must be in " +
+                         limits::RangeText(limits::kMinTimeStep, limits::kMaxTimeStep, "s") +
+                         ", got " + limits::FormatLimit(time_step_));
+  }
+  if (steps_ > limits::kMaxSteps) {
+    throw InputError(
+        "flag", "--steps",
+        "must be in [0, " + std::to_string(limits::kMaxSteps) + "], got " + std::to_string(steps_));
   }
   integrator_ = MakeIntegrator(options.integrator);
   BuildState();

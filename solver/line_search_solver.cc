@@ -31,6 +31,18 @@ LineSearchSolver::LineSearchSolver(IncrementalPotential* potential, const State*
                          "^2 doubles; use lbfgs above " + std::to_string(kMaxBfgsParameters) +
                          " free degrees of freedom");
   }
+  // L-BFGS allocates 2 x rank vectors of the parameters up front: the same
+  // memory budget as BFGS's dense matrix.
+  const double lbfgs_doubles = 2.0 * ceres_options_.max_lbfgs_rank * function_->NumParameters();
+  if (options.optimizer == Optimizer::kLbfgs &&
+      lbfgs_doubles > static_cast<double>(kMaxBfgsParameters) * kMaxBfgsParameters) {
+    throw InputError("flag", "--lbfgs_rank",
+                     "rank " + std::to_string(ceres_options_.max_lbfgs_rank) + " stores " +
+                         std::to_string(2 * ceres_options_.max_lbfgs_rank) + " vectors of " +
+                         std::to_string(function_->NumParameters()) +
+                         " free degrees of freedom, more than the limit of " +
+                         std::to_string(kMaxBfgsParameters) + "^2 doubles; use a smaller rank");
+  }
   callback_ = std::make_unique<StoppingCallback>(
       options.tolerance,
       [this] {

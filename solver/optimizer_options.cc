@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 
 namespace ipstep {
 namespace {
@@ -133,22 +134,43 @@ bool UsesNewtonModel(Optimizer optimizer) {
          optimizer == Optimizer::kProjectedNewton;
 }
 
+// 0 (and for the radius any value <= 0) still means "the default" here; the
+// programs reject an explicit 0 at the flags layer (apps/solver_flags.cc).
 void ValidateOptimizerOptions(const OptimizerOptions& o) {
   if (!std::isfinite(o.tolerance) || o.tolerance <= 0.0) {
     throw InputError("flag", "--tolerance",
                      "must be a finite number > 0, got " + std::to_string(o.tolerance));
   }
-  if (o.max_iterations < 0) {
-    throw InputError("flag", "--max_iterations", "must be >= 0 (0: the optimizer's default)");
+  if (o.max_iterations < 0 || o.max_iterations > limits::kMaxIterations) {
+    throw InputError("flag", "--max_iterations",
+                     "must be in [1, " + std::to_string(limits::kMaxIterations) +
+                         "] (0: the optimizer's default), got " + std::to_string(o.max_iterations));
   }
-  if (!std::isfinite(o.time_limit) || o.time_limit < 0.0) {
-    throw InputError("flag", "--time_limit", "must be >= 0 seconds (0: none)");
+  if (!(o.time_limit >= 0.0 && o.time_limit <= limits::kMaxTimeLimit)) {
+    throw InputError("flag", "--time_limit",
+                     "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s", true) +
+                         " (0: none), got " + limits::FormatLimit(o.time_limit));
   }
-  if (o.num_threads < 1) throw InputError("flag", "--num_threads", "must be >= 1");
-  if (!std::isfinite(o.initial_trust_region_radius) || o.initial_trust_region_radius < 0.0) {
-    throw InputError("flag", "--trust_region_radius", "must be > 0 (0: the default)");
+  if (o.num_threads < 1 || o.num_threads > limits::kMaxThreads) {
+    throw InputError("flag", "--num_threads",
+                     "must be in [1, " + std::to_string(limits::kMaxThreads) + "], got " +
+                         std::to_string(o.num_threads));
   }
-  if (o.lbfgs_rank < 0) throw InputError("flag", "--lbfgs_rank", "must be >= 1 (0: default 20)");
+  const double radius = o.initial_trust_region_radius;
+  if (!std::isfinite(radius) || radius < 0.0 ||
+      (radius > 0.0 &&
+       (radius < limits::kMinTrustRegionRadius || radius > limits::kMaxTrustRegionRadius))) {
+    throw InputError(
+        "flag", "--trust_region_radius",
+        "must be in " +
+            limits::RangeText(limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius) +
+            " (0: the default), got " + limits::FormatLimit(radius));
+  }
+  if (o.lbfgs_rank < 0 || o.lbfgs_rank > limits::kMaxLbfgsRank) {
+    throw InputError("flag", "--lbfgs_rank",
+                     "must be in [1, " + std::to_string(limits::kMaxLbfgsRank) +
+                         "] (0: default 20), got " + std::to_string(o.lbfgs_rank));
+  }
 }
 
 ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {

@@ -62,11 +62,34 @@ TEST_F(ContactProgram, BadContactParametersExitWithCode2) {
               "e.json",
               Particle(R"({"obstacles": [{"type": "plane", "point": [0, 1], "normal": [0, 1]}]})")),
       "not free of contact");
+  // Finite but overflowing contact parameters (core/input_limits.h).
+  const auto bad = [&](const std::string& name, const std::string& contact,
+                       const std::string& friction, const std::string& key) {
+    ExpectInputError("--scene=" + Write(name, Particle(contact, friction)), key);
+  };
+  const std::string plane = R"({"type": "plane", "point": [0, 0], "normal": [0, 1]})";
+  bad("k1.json", "{\"kappa\": 1e300, \"obstacles\": [" + plane + "]}", "", "contact.kappa");
+  bad("d1.json", "{\"dhat\": 1e-300, \"obstacles\": [" + plane + "]}", "", "contact.dhat");
+  bad("p1.json", R"({"obstacles": [{"type": "plane", "point": [0, -1e300], "normal": [0, 1]}]})",
+      "", "contact.obstacles[0].point[1]");
+  bad("r1.json", R"({"obstacles": [{"type": "circle", "center": [0, -2], "radius": 1e300}]})", "",
+      "contact.obstacles[0].radius");
+  bad("v1.json",
+      "{\"obstacles\": [{\"type\": \"plane\", \"point\": [0, 0], \"normal\": [0, 1], "
+      "\"velocity\": [1e300, 0]}]}",
+      "", "contact.obstacles[0].velocity[0]");
+  bad("b1.json", R"({"obstacles": [{"type": "box", "min": [-1e300, -2], "max": [1, -1]}]})", "",
+      "contact.obstacles[0].min[0]");
+  bad("m1.json", "{\"obstacles\": [" + plane + "]}", R"({"mu": 1e300})", "friction.mu");
+  bad("e1.json", "{\"obstacles\": [" + plane + "]}", R"({"mu": 0.3, "epsilon_v": 1e-300})",
+      "friction.epsilon_v");
   const std::string good = Write("good.json", Particle(std::string("{") + kGround + "}"));
   ExpectInputError("--scene=" + good + " --contact_dhat=-1", "--contact_dhat");
   ExpectInputError("--scene=" + good + " --contact_kappa=0", "--contact_kappa");
   ExpectInputError("--scene=" + good + " --friction_mu=-1", "--friction_mu");
   ExpectInputError("--scene=" + good + " --friction_iterations=0", "--friction_iterations");
+  ExpectInputError("--scene=" + good + " --contact_kappa=1e300", "--contact_kappa");
+  ExpectInputError("--scene=" + good + " --contact_dhat=1e-300", "--contact_dhat");
 }
 
 TEST_F(ContactProgram, ContactSceneWritesContactColumns) {

@@ -584,18 +584,18 @@ TEST(ContactInput, BadParametersAreInputErrors) {
   const json drop = json::parse(BuiltinSceneText("slope"));
   json s = drop;
   s["contact"]["dhat"] = 0;
-  ExpectInputError(s, "contact.dhat", "> 0");
+  ExpectInputError(s, "contact.dhat", "must be in [1e-9, 1e6] m");
   s["contact"]["dhat"] = -0.01;
-  ExpectInputError(s, "contact.dhat", "> 0");
+  ExpectInputError(s, "contact.dhat", "must be in [1e-9, 1e6] m");
   s = drop;
   s["contact"]["kappa"] = -1;
-  ExpectInputError(s, "contact.kappa", "> 0");
+  ExpectInputError(s, "contact.kappa", "must be in (0, 1e20]");
   s = drop;
   s["friction"]["mu"] = -0.1;
-  ExpectInputError(s, "friction.mu", ">= 0");
+  ExpectInputError(s, "friction.mu", "must be in [0, 100]");
   s = drop;
   s["friction"]["epsilon_v"] = 0;
-  ExpectInputError(s, "friction.epsilon_v", "> 0");
+  ExpectInputError(s, "friction.epsilon_v", "must be in [1e-12, 1e6] m/s");
   s = drop;
   s["contact"]["obstacles"][0]["point"] = {0, 0};  // the ground through the square
   ExpectInputError(s, "contact", "not free of contact");

@@ -2,11 +2,13 @@
 // so Omega = omega h = h). The node moves along the spring, where the Hookean
 // energy k/2 (|d| - L)^2 is exactly quadratic in the displacement u.
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "core/input_error.h"
 #include "sim/simulation.h"
 #include "tests/test_scenes.h"
 
@@ -114,6 +116,31 @@ TEST(OscillatorLaws, NewmarkTrapezoidalConservesEnergyAndElongatesThePeriod) {
         EXPECT_LE(std::abs(numerical_period - predicted), omega_h);
       }
     }
+  }
+}
+
+// Newmark's parameters are bounded where the method is defined and solvable
+// (integrators/newmark.h): beta in [1e-3, 1], gamma in [1/2, 1]. beta = 1e-300
+// used to be accepted, and every step "converged" to a wrong motion.
+TEST(OscillatorLaws, NewmarkParametersOutsideTheirRangeAreInputErrors) {
+  const auto message = [](double beta, double gamma) -> std::string {
+    try {
+      MakeIntegrator({"newmark", beta, gamma});
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  for (double beta : {1e-300, 0.0, 9e-4, -0.25, 1.5, std::nan("")}) {
+    const std::string m = message(beta, 0.5);
+    EXPECT_EQ(m.rfind("flag: --newmark_beta: must be in [1e-3, 1]", 0), 0u) << beta << ": " << m;
+  }
+  for (double gamma : {0.0, 0.4, 0.4999, 1.5, std::numeric_limits<double>::infinity()}) {
+    const std::string m = message(0.25, gamma);
+    EXPECT_EQ(m.rfind("flag: --newmark_gamma: must be in [0.5, 1]", 0), 0u) << gamma << ": " << m;
+  }
+  for (double beta : {1e-3, 0.25, 1.0}) {
+    for (double gamma : {0.5, 0.75, 1.0}) EXPECT_EQ(message(beta, gamma), "");
   }
 }
 

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -54,6 +55,8 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--integrator=newmark --newmark_beta=0", "flag", "--newmark_beta");
   ExpectInputError("--integrator=newmark --newmark_gamma=2", "flag", "--newmark_gamma");
   ExpectInputError("--newmark_beta=0.3", "flag", "--newmark_beta");
+  ExpectInputError("--integrator=newmark --newmark_beta=1e-300", "flag", "--newmark_beta");
+  ExpectInputError("--integrator=newmark --newmark_gamma=0.4", "flag", "--newmark_gamma");
   ExpectInputError("--on_failure=maybe", "flag", "--on_failure");
   ExpectInputError("--linear_solver=MAGIC", "flag", "--linear_solver");
   ExpectInputError("--sparse_library=MKL", "flag", "--sparse_library");
@@ -75,6 +78,178 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--scene=oscillator --contact_dhat=0.01", "flag", "--contact_dhat");
 }
 
+// An unset flag means the default; an explicit 0 (or -1) is a value, and out
+// of range. Every size-like flag has an upper bound (core/input_limits.h).
+TEST_F(ProgramInput, ExplicitSentinelsAndHugeValuesAreErrors) {
+  for (const char* arguments : {"--dt=0",
+                                "--steps=-1",
+                                "--max_iterations=0",
+                                "--time_limit=0",
+                                "--trust_region_radius=0",
+                                "--optimizer=lbfgs --lbfgs_rank=0",
+                                "--scene=cloth --grid_size=0",
+                                "--num_threads=0",
+                                "--optimizer=lbfgs --lbfgs_rank=2147483647",
+                                "--max_iterations=2147483647",
+                                "--steps=2147483647",
+                                "--num_threads=100000",
+                                "--scene=cloth --grid_size=2147483647",
+                                "--frame_every=2147483647",
+                                "--dt=1e-13",
+                                "--dt=1e4",
+                                "--time_limit=1e308",
+                                "--time_limit=inf",
+                                "--trust_region_radius=1e300",
+                                "--trust_region_radius=1e-300",
+                                "--tolerance=inf"}) {
+    const std::string text = arguments;
+    const size_t flag = text.rfind("--");
+    ExpectInputError(text, "flag", text.substr(flag, text.find('=', flag) - flag));
+  }
+  const Outcome o = RunIpstep("--dt=0");
+  EXPECT_NE(o.output.find("flag: --dt: must be in [1e-12, 1e3] s (omit the flag for the scene's "
+                          "time_step), got 0"),
+            std::string::npos)
+      << o.output;
+  const Outcome rank = RunIpstep("--optimizer=lbfgs --lbfgs_rank=2147483647");
+  EXPECT_NE(rank.output.find("[1, 1000]"), std::string::npos) << rank.output;
+  // In range: runs.
+  for (const char* arguments :
+       {"--dt=1e-6 --steps=2", "--steps=0", "--max_iterations=1 --on_failure=continue --steps=2",
+        "--time_limit=1e9 --steps=2", "--trust_region_radius=1e-12 --steps=2",
+        "--optimizer=lbfgs --lbfgs_rank=1000 --steps=2", "--scene=cloth --grid_size=2 --steps=2",
+        "--num_threads=2 --steps=2", "--frame_every=10000000 --steps=2"}) {
+    const Outcome ok = RunIpstep(arguments);
+    EXPECT_EQ(ok.exit_code, 0) << arguments << "\n" << ok.output;
+  }
+}
+
+TEST_F(ProgramInput, CompareFlagsFollowTheContract) {
+  const auto run = [](const std::string& arguments) {
+    return ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, arguments);
+  };
+  for (const char* arguments :
+       {"--dt=0", "--steps=-1", "--max_iterations=0", "--steps=2147483647",
+        "--integrators=", "--optimizers=,", "--integrators=rk4", "--optimizers=adam",
+        "--integrator=newmark --newmark_beta=1e-300", "--no_such_flag"}) {
+    const Outcome o = run(arguments);
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind("ipstep_compare: error: flag: --", 0), 0u) << arguments << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  }
+  const Outcome ok = run("--steps=2 --integrators=backward_euler --optimizers=newton");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
+// gflags' own flags follow the contract too: help variants exit 0; flags from
+// a flagfile or the environment are checked like the command line's.
+TEST_F(ProgramInput, GflagsOwnFlags) {
+  for (const std::string help : {"--help", "--helpfull", "--helpshort", "--helppackage",
+                                 "--helpon=solver_flags", "--helpmatch=solver", "--helpxml"}) {
+    const Outcome o = RunIpstep(help);
+    EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
+    EXPECT_NE(o.output.find("dt"), std::string::npos) << help << "\n" << o.output.substr(0, 300);
+  }
+  const Outcome version = RunIpstep("--version");
+  EXPECT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_EQ(version.output.rfind("ipstep", 0), 0u) << version.output;
+  EXPECT_NE(RunIpstep("--helpshort").output.find("frame_every"), std::string::npos);
+  EXPECT_EQ(RunIpstep("--helpshort").output.find("logtostderr"), std::string::npos);
+
+  // --flagfile: every line is checked; where it came from is named.
+  const std::string good =
+      Write("good.flags", "# comment\n\n  --dt=0.05\n--steps=2\n--noprogress\n");
+  const Outcome applied = RunIpstep("--flagfile=" + good);
+  EXPECT_EQ(applied.exit_code, 0) << applied.output;
+  EXPECT_NE(applied.output.find("dt 0.05 s, 2 steps"), std::string::npos) << applied.output;
+  const Outcome two_tokens = RunIpstep("--flagfile " + good + " --steps=3");
+  EXPECT_NE(two_tokens.output.find("dt 0.05 s, 3 steps"), std::string::npos) << two_tokens.output;
+  const std::string unknown = Write("unknown.flags", "--dt=0.05\n--no_such_flag=1\n");
+  ExpectInputError("--flagfile=" + unknown, "--no_such_flag", "unknown.flags, line 2");
+  ExpectInputError("--flagfile=" + Write("zero.flags", "--dt=0\n"), "--dt", "zero.flags, line 1");
+  ExpectInputError("--flagfile=" + Write("value.flags", "--dt\n"), "--dt", "missing value");
+  ExpectInputError("--flagfile=" + Write("section.flags", "ipstep\n--dt=1\n"), "--flagfile",
+                   "section.flags, line 1");
+  ExpectInputError("--flagfile=" + (dir_ / "missing.flags").string(), "--flagfile",
+                   "missing.flags");
+  ExpectInputError("--flagfile=/dev/zero", "--flagfile", "not a regular file");
+  const std::string loop = (dir_ / "loop.flags").string();
+  Write("loop.flags", "--flagfile=" + loop + "\n");
+  ExpectInputError("--flagfile=" + loop, "--flagfile", "nested");
+  ExpectInputError("--flagfile", "--flagfile", "missing value");
+
+  // --fromenv / --tryfromenv read FLAGS_<name>.
+  const auto with_env = [](const std::string& env, const std::string& arguments) {
+    return ipstep::testing::RunProgram(env + " " + IPSTEP_BINARY, arguments);
+  };
+  Outcome o = with_env("FLAGS_dt=0.05", "--fromenv=dt --steps=1");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("dt 0.05 s"), std::string::npos) << o.output;
+  o = with_env("FLAGS_dt=0", "--tryfromenv=dt");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--dt: must be in"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("FLAGS_dt"), std::string::npos) << o.output;
+  o = with_env("FLAGS_dt=abc", "--fromenv=dt");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  ExpectInputError("--fromenv=ipstep_test_unset_flag", "--fromenv", "ipstep_test_unset_flag");
+  o = with_env("env -u FLAGS_steps", "--fromenv=steps");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("FLAGS_steps is not set"), std::string::npos) << o.output;
+  o = with_env("env -u FLAGS_steps", "--tryfromenv=steps --steps=1");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  ExpectInputError("--undefok=foo", "--undefok", "not supported");
+}
+
+#ifdef IPSTEP_BENCH_BINARY
+// ipstep_bench has its own flags but the same contract.
+TEST_F(ProgramInput, BenchFlagsFollowTheContract) {
+  const auto run = [](const std::string& arguments) {
+    return ipstep::testing::RunProgram(IPSTEP_BENCH_BINARY, arguments);
+  };
+  const std::string flagfile = Write("bench.flags", "--repeats=1\n--bogus=1\n");
+  for (const std::string& arguments :
+       std::vector<std::string>{"--steps=0",
+                                "--t_end=0",
+                                "--repeats=0",
+                                "--repeats=2147483647",
+                                "--warmup=2147483647",
+                                "--steps=2147483647",
+                                "--t_end=1e300",
+                                "--dts=1e-300",
+                                "--dts=1e300",
+                                "--dt_factors=1e-300",
+                                "--grid_sizes=0",
+                                "--grid_sizes=2147483647",
+                                "--optimizers=newton+radius=0",
+                                "--optimizers=lbfgs+rank=2147483647",
+                                "--optimizers=newton+threads=100000",
+                                "--optimizers=newton+max_iterations=2147483647",
+                                "--max_run_seconds=-1",
+                                "--max_run_seconds=1e300",
+                                "--reference_tolerance=0",
+                                "--tolerances=inf",
+                                "--merge=/dev/zero",
+                                "--flagfile=" + flagfile,
+                                "--undefok=x",
+                                "--no_such_flag"}) {
+    const Outcome o = run(arguments + " --dry_run --output=" + (dir_ / "out.csv").string());
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind("ipstep_bench: error: ", 0), 0u) << arguments << "\n" << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  }
+  for (const char* help : {"--help", "--helpshort", "--version"}) {
+    const Outcome o = run(help);
+    EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
+  }
+  EXPECT_NE(run("--helpshort").output.find("repeats"), std::string::npos);
+  const Outcome ok = run("--grid_sizes=scene,4 --scenes=cloth --steps=3 --dry_run");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("grid=0"), std::string::npos) << ok.output;
+  EXPECT_NE(ok.output.find("grid=4"), std::string::npos) << ok.output;
+}
+#endif
+
 TEST_F(ProgramInput, BadSceneFiles) {
   ExpectInputError("--scene=" + (dir_ / "missing.json").string(), "missing.json", "");
   ExpectInputError("--scene=no_such_builtin", "no_such_builtin", "oscillator");
@@ -93,6 +268,24 @@ TEST_F(ProgramInput, BadSceneFiles) {
   const std::string type =
       Write("type.json", text.replace(text.find("\"stiffness\": 1"), 14, "\"stiffness\": \"1\""));
   ExpectInputError("--scene=" + type, "type.json", "stiffness");
+}
+
+TEST_F(ProgramInput, SceneFilesAreRegularBoundedAndWhole) {
+  ExpectInputError("--scene=/dev/zero", "/dev/zero", "not a regular file");
+  ExpectInputError("--scene=" + dir_.string(), dir_.string(), "directory");
+  std::string text = kValidScene;
+  text += std::string(1, '\0') + "garbage";
+  ExpectInputError("--scene=" + Write("nul.json", text), "nul.json", "NUL byte");
+  ExpectInputError("--scene=" + Write("trailing.json", std::string(kValidScene) + " 1"),
+                   "trailing.json", "malformed JSON");
+  // A 10 MB unknown key: one short line.
+  text = kValidScene;
+  const std::string key(10 << 20, 'x');
+  const Outcome o =
+      RunIpstep("--scene=" + Write("key.json", text.replace(1, 0, "\"" + key + "\": 1,")));
+  EXPECT_EQ(o.exit_code, 2) << o.output.substr(0, 300);
+  EXPECT_LT(o.output.size(), 400u) << o.output.substr(0, 400);
+  EXPECT_NE(o.output.find("unknown key"), std::string::npos) << o.output.substr(0, 400);
 }
 
 TEST_F(ProgramInput, ValidRunWritesItsOutputs) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -535,19 +536,19 @@ TEST(BadInputTest, WrongTypes) {
 TEST(BadInputTest, OutOfRangeNumbers) {
   json scene = TwoNodes();
   scene["nodes"]["masses"][1] = -1;
-  ExpectMessage(ErrorOf(scene), "nodes.masses[1]", "must be > 0, got -1");
+  ExpectMessage(ErrorOf(scene), "nodes.masses[1]", "must be in [1e-12, 1e12] kg, got -1");
 
   scene = TwoNodes();
   scene["springs"][0]["stiffness"] = 0;
-  ExpectMessage(ErrorOf(scene), "springs[0].stiffness", "must be > 0, got 0");
+  ExpectMessage(ErrorOf(scene), "springs[0].stiffness", "must be in (0, 1e15], got 0");
 
   scene = TwoNodes();
   scene["springs"][0]["rest_length"] = -0.5;
-  ExpectMessage(ErrorOf(scene), "springs[0].rest_length", "must be > 0, got -0.5");
+  ExpectMessage(ErrorOf(scene), "springs[0].rest_length", "must be in [1e-9, 1e7] m, got -0.5");
 
   scene = TwoNodes();
   scene["time_step"] = 0;
-  ExpectMessage(ErrorOf(scene), "time_step", "must be > 0");
+  ExpectMessage(ErrorOf(scene), "time_step", "must be in [1e-12, 1e3] s, got 0");
 
   scene = TwoNodes();
   scene["steps"] = -1;
@@ -568,7 +569,7 @@ TEST(BadInputTest, OutOfRangeNumbers) {
   scene = TwoNodes();
   scene["effects"].push_back("damping");
   scene["damping"] = {{"mass_proportional", -0.1}};
-  ExpectMessage(ErrorOf(scene), "damping.mass_proportional", "must be >= 0");
+  ExpectMessage(ErrorOf(scene), "damping.mass_proportional", "must be in [0, 1e12] 1/s, got -0.1");
 
   scene = Grid(3, 3, {});
   scene["grid"]["nx"] = 1;
@@ -599,18 +600,116 @@ TEST(BadInputTest, HugeValues) {
 
   scene = TwoNodes();
   scene["nodes"]["positions"] = {{-1e308, 0}, {1e308, 0}};
-  ExpectMessage(ErrorOf(scene), "springs[0].rest_length", "not finite");
+  ExpectMessage(ErrorOf(scene), "nodes.positions[0][0]", "must be in [-1e6, 1e6] m, got -1e+308");
 
   scene = Grid(3, 3, {});
   scene["grid"]["width"] = 1e308;
   scene["grid"]["origin"] = {1e308, 0};
-  ExpectMessage(ErrorOf(scene), "grid", "not finite");
+  ExpectMessage(ErrorOf(scene), "grid.origin[0]", "must be in [-1e6, 1e6] m");
+  scene["grid"]["origin"] = {0, 0};
+  ExpectMessage(ErrorOf(scene), "grid", "outside [-1e6, 1e6] m");
 
   scene = Grid(3, 3, {});
   scene["grid"].erase("mass");
   scene["grid"]["density"] = 1e300;
   scene["grid"]["width"] = 1e300;
-  ExpectMessage(ErrorOf(scene), "grid.density", "must be finite and > 0");
+  ExpectMessage(ErrorOf(scene), "grid.density", "gives each node a mass of inf kg");
+}
+
+// Finite but overflowing values are rejected at load with the key and the
+// documented range (core/input_limits.h, docs/scenes.md "Validation"); they
+// used to load and give inf/NaN energies later.
+TEST(BadInputTest, PhysicalRanges) {
+  json scene = TwoNodes();
+  scene["gravity"] = {0, -1e200};
+  ExpectMessage(ErrorOf(scene), "gravity[1]", "must be in [-1e6, 1e6] m/s^2, got -1e+200");
+
+  scene = TwoNodes();
+  scene["nodes"].erase("velocities");
+  scene["initial_velocity"] = {1e308, 0};
+  ExpectMessage(ErrorOf(scene), "initial_velocity[0]", "must be in [-1e6, 1e6] m/s");
+  scene = TwoNodes();
+  scene["nodes"]["velocities"][1] = {0, 2e6};
+  ExpectMessage(ErrorOf(scene), "nodes.velocities[1][1]", "must be in [-1e6, 1e6] m/s");
+  scene = TwoNodes();
+  scene["pinned"] = json::array();
+  scene["nodes"]["velocities"][0] = {0, 0};
+  scene["moving"] = {{{"node", 0}, {"velocity", {1e300, 0}}}};
+  ExpectMessage(ErrorOf(scene), "moving[0].velocity[0]", "must be in [-1e6, 1e6] m/s");
+
+  scene = TwoNodes();
+  scene["springs"][0]["stiffness"] = 1e308;
+  ExpectMessage(ErrorOf(scene), "springs[0].stiffness", "must be in (0, 1e15], got 1e+308");
+  scene = Grid(3, 3, {"shear"});
+  scene["grid"]["shear"]["stiffness"] = 1e16;
+  ExpectMessage(ErrorOf(scene), "grid.shear.stiffness", "must be in (0, 1e15]");
+
+  scene = TwoNodes();
+  scene["time_step"] = 5e-324;
+  ExpectMessage(ErrorOf(scene), "time_step", "must be in [1e-12, 1e3] s");
+  scene["time_step"] = 1e4;
+  ExpectMessage(ErrorOf(scene), "time_step", "must be in [1e-12, 1e3] s, got 1e+04");
+  scene = TwoNodes();
+  scene["steps"] = 10000001;
+  ExpectMessage(ErrorOf(scene), "steps", "must be an integer in [0, 10000000]");
+
+  scene = TwoNodes();
+  scene["nodes"]["masses"] = {1, 1e-320};
+  ExpectMessage(ErrorOf(scene), "nodes.masses[1]", "must be in [1e-12, 1e12] kg");
+  scene = TwoNodes();
+  scene["nodes"].erase("masses");
+  scene["nodes"]["mass"] = 1e13;
+  ExpectMessage(ErrorOf(scene), "nodes.mass", "must be in [1e-12, 1e12] kg");
+  scene = Grid(3, 3, {});
+  scene["grid"].erase("mass");
+  scene["grid"]["total_mass"] = 1e-12;  // 1/9 of it per node
+  ExpectMessage(ErrorOf(scene), "grid.total_mass", "in [1e-12, 1e12] kg");
+  scene = Grid(3, 3, {});
+  scene["grid"].erase("mass");
+  scene["grid"]["density"] = 1e300;
+  ExpectMessage(ErrorOf(scene), "grid.density", "in [1e-12, 1e12] kg");
+
+  scene = TwoNodes();
+  scene["nodes"]["positions"] = {{0, 0}, {1e300, 0}};
+  ExpectMessage(ErrorOf(scene), "nodes.positions[1][0]", "must be in [-1e6, 1e6] m");
+  scene = R"({"particle": {"position": [0, 0], "mass": 1}})"_json;
+  scene["particle"]["position"] = {0, -2e6};
+  ExpectMessage(ErrorOf(scene), "particle.position[1]", "must be in [-1e6, 1e6] m");
+  scene = Grid(3, 3, {});
+  scene["grid"]["origin"] = {1e300, 0};
+  ExpectMessage(ErrorOf(scene), "grid.origin[0]", "must be in [-1e6, 1e6] m");
+  scene = Grid(3, 3, {});
+  scene["grid"]["width"] = 1e300;
+  ExpectMessage(ErrorOf(scene), "grid", "outside [-1e6, 1e6] m");
+
+  scene = TwoNodes();
+  scene["springs"][0]["rest_length"] = 1e-300;
+  ExpectMessage(ErrorOf(scene), "springs[0].rest_length", "must be in [1e-9, 1e7] m");
+  scene = TwoNodes();
+  scene["nodes"]["positions"] = {{0, 0}, {1e-12, 0}};
+  ExpectMessage(ErrorOf(scene), "springs[0].rest_length", "[1e-9, 1e7] m");
+  scene = Grid(3, 3, {"structural"});
+  scene["grid"]["width"] = 1e-12;
+  ExpectMessage(ErrorOf(scene), "grid.structural", "[1e-9, 1e7] m");
+
+  scene = TwoNodes();
+  scene["effects"].push_back("damping");
+  scene["damping"] = {{"mass_proportional", 1e300}};
+  ExpectMessage(ErrorOf(scene), "damping.mass_proportional", "must be in [0, 1e12] 1/s");
+  scene["damping"] = {{"stiffness_proportional", 1e4}};
+  ExpectMessage(ErrorOf(scene), "damping.stiffness_proportional", "must be in [0, 1e3] s");
+
+  // The edges of the hard-case benchmarks load: stiff springs, small steps,
+  // fast impacts, light nodes next to heavy ones.
+  scene = TwoNodes();
+  scene["time_step"] = 1e-6;
+  scene["springs"][0]["stiffness"] = 1e8;
+  scene["nodes"]["masses"] = {1e-6, 1};
+  scene["nodes"]["velocities"][1] = {-1000, 0};
+  scene["gravity"] = {0, -9.81};
+  const Scene loaded = ParseScene(scene, kSource);
+  EXPECT_EQ(loaded.masses[0], 1e-6);
+  EXPECT_EQ(loaded.time_step, 1e-6);
 }
 
 TEST(BadInputTest, BadNodeIndices) {
@@ -829,9 +928,71 @@ TEST(BadInputTest, UnreadableFiles) {
   message = InputErrorOf([&] { LoadSceneFile(::testing::TempDir()); });
   EXPECT_NE(message.find("is a directory"), std::string::npos) << message;
 
+  message = InputErrorOf([] { LoadScene(""); });
+  EXPECT_EQ(message.rfind("scene: the name is empty", 0), 0u) << message;
+
   message = InputErrorOf([&] { LoadScene(missing); });
   EXPECT_NE(message.find(missing), std::string::npos) << message;
   EXPECT_NE(message.find("no such scene file"), std::string::npos) << message;
+}
+
+// Only regular files are read, up to a size limit; a NUL byte or anything
+// after the scene's JSON value is an error (nlohmann stops at a NUL byte).
+TEST(BadInputTest, FileKindSizeAndTrailingGarbage) {
+  std::string message = InputErrorOf([] { LoadSceneFile("/dev/zero"); });
+  EXPECT_NE(message.find("/dev/zero: cannot read scene file: not a regular file"),
+            std::string::npos)
+      << message;
+  message = InputErrorOf([] { LoadScene("/dev/null"); });
+  EXPECT_NE(message.find("not a regular file"), std::string::npos) << message;
+
+  const std::string big = ::testing::TempDir() + "/scene_loader_test_big.json";
+  {
+    std::ofstream file(big);
+    file << TwoNodes().dump();
+  }
+  std::filesystem::resize_file(big, (256u << 20) + 1);  // sparse: no disk space used
+  message = InputErrorOf([&] { LoadSceneFile(big); });
+  EXPECT_NE(message.find("larger than the limit of 256 MiB"), std::string::npos) << message;
+  std::remove(big.c_str());
+
+  const std::string valid = TwoNodes().dump();
+  ExpectMessage(ErrorOfText(valid + std::string(1, '\0') + "garbage"), "NUL byte",
+                "at offset " + std::to_string(valid.size()));
+  ExpectMessage(ErrorOfText(valid + std::string(1, '\0')), "NUL byte", "");
+  ExpectMessage(ErrorOfText(valid + " {}"), "malformed JSON", "expected end of input");
+  ExpectMessage(ErrorOfText(valid + "\n x"), "malformed JSON", "");
+  EXPECT_EQ(ParseScene(valid + " \n\t\r\n", kSource).num_nodes(), 2);  // trailing blanks are fine
+}
+
+// Input echoed in a message (keys, names, tokens) is cut to about 80
+// characters, so that a 10 MB key does not make a 10 MB error line.
+TEST(BadInputTest, EchoedInputIsCut) {
+  const std::string huge(10 << 20, 'k');
+  const auto expect_short = [&](const std::string& message, const std::string& what) {
+    ExpectMessage(message, "...", what);
+    EXPECT_LT(message.size(), 400u) << message.substr(0, 400);
+  };
+  json scene = TwoNodes();
+  scene[huge] = 1;
+  expect_short(ErrorOf(scene), "unknown key");
+  scene = TwoNodes();
+  scene["nodes"][huge] = 1;
+  expect_short(ErrorOf(scene), "unknown key");
+  scene = TwoNodes();
+  scene["effects"].push_back(huge);
+  expect_short(ErrorOf(scene), "unknown effect");
+  scene = TwoNodes();
+  scene["springs"][0]["model"] = huge;
+  expect_short(ErrorOf(scene), "unknown spring model");
+  scene = Grid(3, 3, {});
+  scene["pinned"] = {huge};
+  expect_short(ErrorOf(scene), "unknown node name");
+  // Parse errors quote the token nlohmann last read.
+  expect_short(ErrorOfText("{\"name\": \"" + huge), "malformed JSON");
+  expect_short(ErrorOfText("{\"steps\": 1" + std::string(10 << 20, '0') + "}"), "out of the range");
+  expect_short(ErrorOfText("{\"a\": 1, \"" + huge + "\": 1, \"" + huge + "\": 2}"),
+               "duplicate key");
 }
 
 TEST(BadInputTest, UnknownBuiltinName) {
