@@ -44,7 +44,7 @@ int Run() {
                      "must be 'stop' or 'continue', got '" + ClipInput(FLAGS_on_failure) + "'");
   }
   options.max_substeps =
-      CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps (1: no retry)");
+      CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps; 1 is no retry");
   CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
   CheckContactFlagsApply(scene);

@@ -134,7 +134,7 @@ SimulationOptions SimulationOptionsFromFlags() {
     o.steps = CheckFlagRange("steps", FLAGS_steps, 0, limits::kMaxSteps, "the scene's steps");
   }
   o.energy_tolerance = CheckFlagRange("energy_tolerance", FLAGS_energy_tolerance, 0.0, 100.0, "",
-                                      "0.1 (0: no check)");
+                                      "the tolerance 0.1; 0 is no check");
   return o;
 }
 
