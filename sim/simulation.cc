@@ -210,16 +210,13 @@ StepReport Simulation::Step() {
   StepReport report;
   report.step = ++steps_taken_;
   const State saved = state_;
-  const double saved_growth = run_energy_growth_, saved_scale = run_energy_scale_,
-               saved_floor = run_energy_floor_;
+  const RunEnergyBalance saved_energy = run_energy_;
   Advance(h, &report);
   if (!report.converged && options_.max_substeps > 1) report.retry_reason = report.status;
   // Retry a failed step as 2, 4, ... substeps from the same start.
   for (int substeps = 2; !report.converged && substeps <= options_.max_substeps; substeps *= 2) {
     state_ = saved;
-    run_energy_growth_ = saved_growth;
-    run_energy_scale_ = saved_scale;
-    run_energy_floor_ = saved_floor;
+    run_energy_ = saved_energy;
     const double h_sub = h / substeps;
     integrator_->SetWeights(h_sub, &potential_->context());
     StepReport attempt;
@@ -232,6 +229,7 @@ StepReport Simulation::Step() {
       attempt.iterations += sub.iterations;
       attempt.evaluations += sub.evaluations;
       attempt.energy_growth += sub.energy_growth;
+      attempt.energies = sub.energies;
     }
     integrator_->SetWeights(h, &potential_->context());
     report.iterations += attempt.iterations;
@@ -239,6 +237,7 @@ StepReport Simulation::Step() {
     report.converged = attempt.converged;
     report.residual = attempt.residual;
     report.energy_growth = attempt.energy_growth;
+    report.energies = attempt.energies;
     report.substeps = substeps;
     report.status = attempt.converged
                         ? "converged"
@@ -248,7 +247,6 @@ StepReport Simulation::Step() {
   report.time = state_.time;
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report.energies = Energies();
   for (const auto& filter : potential_->step_filters()) {
     for (double value : filter->Diagnostics(state_.x.data())) report.diagnostics.push_back(value);
   }
@@ -306,21 +304,22 @@ void Simulation::Advance(double h, StepReport* report) {
     state_.a.segment(dim * i, dim).setZero();
   }
   state_.time = t_next;
+  // The energies at the end, once: the report's and the balance's.
+  EnergyPoint energy_end;
+  const bool measured_end =
+      measured_start &&
+      MeasureEnergy(*potential_, state_, gravity_, integrator_->has_inertia(),
+                    integrator_->impulsive_energy_factor(), prescribed_motion, &energy_end);
+  report->energies = measured_end ? energy_end.energy : Energies();
   // The step that produces a non-finite number fails, whatever the integrator.
-  const EnergyReport energies = Energies();
   if (report->converged && !(state_.x.allFinite() && state_.v.allFinite())) {
     report->converged = false;
     report->status = "non-finite state";
-  } else if (report->converged && !std::isfinite(energies.total())) {
+  } else if (report->converged && !std::isfinite(report->energies.total())) {
     report->converged = false;
     report->status = "non-finite energy";
   }
-  if (!measured_start || !report->converged) return;
-  EnergyPoint energy_end;
-  if (!MeasureEnergy(*potential_, state_, gravity_, integrator_->has_inertia(),
-                     integrator_->impulsive_energy_factor(), prescribed_motion, &energy_end)) {
-    return;
-  }
+  if (!measured_end || !report->converged) return;
   double filter_work = 0.0;
   for (const auto& filter : potential_->step_filters()) {
     // Filters' terms are impulsive (contact): counted with the integrator's factor.
@@ -334,9 +333,9 @@ void Simulation::Advance(double h, StepReport* report) {
           << balance.end << " work " << balance.work << " floor " << balance.floor;
   // Per step, and over the run: energy created a little at a time, each step
   // under the tolerance, adds up to the same.
-  const double run_scale = std::max(run_energy_scale_, balance.scale);
-  const double run_growth = run_energy_growth_ + balance.growth();
-  const double run_floor = run_energy_floor_ + balance.floor;
+  const double run_scale = std::max(run_energy_.scale, balance.scale);
+  const double run_growth = run_energy_.growth + balance.growth();
+  const double run_floor = run_energy_.floor + balance.floor;
   if (balance.Exceeds(options_.energy_tolerance)) {
     report->converged = false;
     report->status = balance.Describe();
@@ -349,9 +348,7 @@ void Simulation::Advance(double h, StepReport* report) {
                   run_growth, 100.0 * run_growth / run_scale, run_scale);
     report->status = text;
   }
-  run_energy_scale_ = run_scale;
-  run_energy_growth_ = run_growth;
-  run_energy_floor_ = run_floor;
+  run_energy_ = {run_growth, run_scale, run_floor};
 }
 
 }  // namespace ipstep

@@ -109,9 +109,12 @@ class Simulation {
   std::vector<std::string> effect_summaries_;
   // Energy balance over the run (sim/energy_balance.h): the sum of the
   // steps' growth and floors, and the largest energy in motion of any step.
-  double run_energy_growth_ = 0.0;
-  double run_energy_scale_ = 0.0;
-  double run_energy_floor_ = 0.0;
+  struct RunEnergyBalance {
+    double growth = 0.0;
+    double scale = 0.0;
+    double floor = 0.0;
+  };
+  RunEnergyBalance run_energy_;
 };
 
 }  // namespace ipstep
