@@ -13,7 +13,7 @@
 
 #include "contact/contact_manager.h"
 #include "contact/contact_overrides.h"
-#include "contact/contact_surface.h"
+#include "contact/collision_mesh.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 
@@ -218,7 +218,7 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
   if (overrides.d_hat) options.d_hat = *overrides.d_hat;
   if (overrides.kappa) options.kappa = *overrides.kappa;
 
-  ContactSurface surface = BuildContactSurface(scene);
+  CollisionMesh surface = BuildCollisionMesh(scene);
   auto manager = std::make_unique<ContactManager>(builder.potential(), &builder.state(),
                                                   std::move(surface), options);
   const std::string penetration =

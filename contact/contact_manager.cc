@@ -52,7 +52,7 @@ constexpr char ContactManager::kContactFamily[];
 constexpr char ContactManager::kFrictionFamily[];
 
 ContactManager::ContactManager(IncrementalPotential* potential, const State* state,
-                               ContactSurface surface, ContactOptions options)
+                               CollisionMesh surface, ContactOptions options)
     : potential_(potential),
       state_(state),
       context_(&potential->context()),

@@ -4,7 +4,7 @@
 // min_distance / active_contacts.
 //
 // Pairs: contact nodes against obstacles, contact edges (2D boundary edges, 3D
-// cloth springs; contact/contact_surface.h) against the edge features of
+// cloth springs; contact/collision_mesh.h) against the edge features of
 // spheres / circles and 2D boxes (Obstacle::EdgeDistance), 3D cloth faces
 // against the face features of spheres and 3D boxes (centre, corners;
 // Obstacle::FaceDistance) and 3D cloth edges against 3D box edges
@@ -61,7 +61,7 @@
 
 #include <Eigen/Core>
 
-#include "contact/contact_surface.h"
+#include "contact/collision_mesh.h"
 #include "contact/mesh_obstacle_pairs.h"
 #include "contact/obstacle.h"
 #include "contact/spatial_hash.h"
@@ -90,7 +90,7 @@ class ContactManager : public StepFilter {
   static constexpr char kFrictionFamily[] = "friction";
 
   // `potential` and `state` must outlive the manager (the simulation owns all).
-  ContactManager(IncrementalPotential* potential, const State* state, ContactSurface surface,
+  ContactManager(IncrementalPotential* potential, const State* state, CollisionMesh surface,
                  ContactOptions options);
 
   // Empty if positions x are free of penetration (gaps > 0) at time t;
@@ -130,7 +130,7 @@ class ContactManager : public StepFilter {
   bool adaptive_kappa() const { return adaptive_; }
   double d_hat() const { return options_.d_hat; }
   double obstacle_time() const { return tau_; }
-  const ContactSurface& surface() const { return surface_; }
+  const CollisionMesh& surface() const { return surface_; }
   const std::vector<Obstacle>& obstacles() const { return options_.obstacles; }
   int num_barrier_pairs() const {
     return static_cast<int>(obstacle_pairs_.size() + edge_pairs_.size() +
@@ -230,7 +230,7 @@ class ContactManager : public StepFilter {
   const State* state_;
   StepContext* context_;
   int dim_;
-  ContactSurface surface_;
+  CollisionMesh surface_;
   ContactOptions options_;
   std::vector<bool> slot_free_;
   double margin_;  // smallest admissible gap

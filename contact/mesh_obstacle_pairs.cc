@@ -67,7 +67,7 @@ bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs) {
 
 }  // namespace
 
-MeshObstaclePairs::MeshObstaclePairs(const ContactSurface* surface,
+MeshObstaclePairs::MeshObstaclePairs(const CollisionMesh* surface,
                                      const std::vector<Obstacle>* obstacles,
                                      std::vector<bool> slot_free, double d_hat, double margin)
     : surface_(surface),

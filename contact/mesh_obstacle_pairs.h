@@ -7,7 +7,7 @@
 // kappa's balance.
 //
 // Barrier (FaceObstacleGap, EdgeBoxEdgeGap in contact/contact_terms.h): weight
-// the face's / edge's weight (contact/contact_surface.h). Against a sphere's
+// the face's / edge's weight (contact/collision_mesh.h). Against a sphere's
 // centre the gap is that of the face's closest point lagged as barycentric
 // weights (set when a pair is added and by Lag), so that it is convex in the
 // vertices within a solve, like the edge-obstacle pairs' (docs/contact.md,
@@ -31,7 +31,7 @@
 
 #include <Eigen/Core>
 
-#include "contact/contact_surface.h"
+#include "contact/collision_mesh.h"
 #include "contact/obstacle.h"
 #include "core/incremental_potential.h"
 
@@ -43,7 +43,7 @@ class MeshObstaclePairs {
   // surface->nodes, whether the node is free (faces and edges whose nodes are
   // all pinned get no pairs). Empty unless some obstacle has face features or
   // box edges (3D spheres and boxes).
-  MeshObstaclePairs(const ContactSurface* surface, const std::vector<Obstacle>* obstacles,
+  MeshObstaclePairs(const CollisionMesh* surface, const std::vector<Obstacle>* obstacles,
                     std::vector<bool> slot_free, double d_hat, double margin);
 
   bool active() const { return active_; }
@@ -134,7 +134,7 @@ class MeshObstaclePairs {
                    const Cutoff& edge_cutoff, const std::vector<double>* travel,
                    const OnFace& on_face, const OnEdge& on_edge) const;
 
-  const ContactSurface* surface_;
+  const CollisionMesh* surface_;
   const std::vector<Obstacle>* obstacles_;
   std::vector<bool> slot_free_;
   double d_hat_;

@@ -88,7 +88,7 @@ struct Obstacle {
 
   static constexpr double kEdgeGapFraction = 0.1;
 
-  // 3D faces (triangles [a, b, c] of contact edges, contact/contact_surface.h)
+  // 3D faces (triangles [a, b, c] of contact edges, contact/collision_mesh.h)
   // and 3D box edges. Both convex, a triangle and an obstacle touch first, in
   // a continuous motion, where a vertex meets the obstacle (node pairs), a
   // triangle edge meets it (edge pairs, and below against box edges) or the

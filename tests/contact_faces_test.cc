@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "contact/contact_surface.h"
+#include "contact/collision_mesh.h"
 #include "contact/contact_terms.h"
 #include "contact/obstacle.h"
 #include "contact/point_triangle.h"
@@ -409,7 +409,7 @@ TEST(FaceTerms, JacobiansMatchFiniteDifferencesAndFailInside) {
   EXPECT_FALSE(edge_gap.Evaluate(f, &residual, nullptr));
 }
 
-TEST(ContactSurface, GridFacesAreTheTrianglesOfBothDiagonals) {
+TEST(CollisionMesh, GridFacesAreTheTrianglesOfBothDiagonals) {
   // 3 x 3 nodes, spacing 0.5, structural + shear + bending springs.
   Scene scene;
   scene.dimension = 3;
@@ -438,7 +438,7 @@ TEST(ContactSurface, GridFacesAreTheTrianglesOfBothDiagonals) {
       }
     }
   }
-  const ContactSurface surface = BuildContactSurface(scene);
+  const CollisionMesh surface = BuildCollisionMesh(scene);
   EXPECT_EQ(surface.edges.size(), 12u + 8u);  // structural + shear, no bending
   ASSERT_EQ(surface.faces.size(), 16u);       // four per quad
   ASSERT_EQ(surface.face_weights.size(), 16u);

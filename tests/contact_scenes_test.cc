@@ -469,7 +469,7 @@ TEST(ContactEdges, FastSegmentIsStoppedByACircle) {
 
 // 3D: cloth_sphere through first contact and the drape (200 steps, both
 // integrators): every cloth spring segment that is part of the surface
-// (structural and shear; contact/contact_surface.h) stays outside the sphere
+// (structural and shear; contact/collision_mesh.h) stays outside the sphere
 // at every accepted iterate (the probe's gap includes edge-sphere pairs) and
 // after every step. Before the edge barriers, nodes stayed >= 3.2 mm outside
 // while springs cut up to 12.7 mm in.
@@ -478,7 +478,7 @@ TEST(ContactEdges, ClothSpringsStayOutsideTheSphere) {
     Scene scene = LoadWithProbe("cloth_sphere");
     g_probe = ProbeRecord{};
     Simulation sim(scene, testing::Options(integrator, "newton", 0, 1e-5));
-    const ContactSurface& surface = Manager(sim).surface();
+    const CollisionMesh& surface = Manager(sim).surface();
     ASSERT_GT(surface.edges.size(), 300u);  // 9*10*2 structural + 81*2 shear
     double closest = std::numeric_limits<double>::infinity();
     int contact_steps = 0;
@@ -637,7 +637,7 @@ json ClothScene(int nx, double width, const json& origin, const json& obstacles)
 }
 
 // Smallest distance from p to a face of the contact surface at x.
-double ClosestFace(const ContactSurface& surface, const double* x, const Eigen::Vector3d& p) {
+double ClosestFace(const CollisionMesh& surface, const double* x, const Eigen::Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& f : surface.faces) {
     best = std::min(best, PointTriangleDistance(p, ToPoint(x + 3 * f[0], 3),
@@ -666,7 +666,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
     Scene loaded = LoadWithProbe(scene.dump(), true);
     g_probe = ProbeRecord{};
     Simulation sim(loaded, testing::Options(integrator, "newton", 0, 1e-5));
-    const ContactSurface& surface = Manager(sim).surface();
+    const CollisionMesh& surface = Manager(sim).surface();
     ASSERT_EQ(surface.faces.size(), 25u * 4u);
     // At the start no spring passes within R: only the faces can hold it.
     double spring_clearance = std::numeric_limits<double>::infinity();
@@ -706,7 +706,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
 // True if the cloth at x is clear of the box: no contact edge within 0 of a
 // box edge or through the box, no box corner on a face, no box edge through a
 // face (with the nodes outside, checked by FindPenetration, this is all).
-std::string BoxConflict(const ContactSurface& surface, const double* x, const Obstacle& box,
+std::string BoxConflict(const CollisionMesh& surface, const double* x, const Obstacle& box,
                         double* closest) {
   for (const auto& e : surface.edges) {
     const Eigen::Vector3d a = ToPoint(x + 3 * e[0], 3), b = ToPoint(x + 3 * e[1], 3);

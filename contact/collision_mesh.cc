@@ -1,4 +1,4 @@
-#include "contact/contact_surface.h"
+#include "contact/collision_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -94,8 +94,8 @@ std::vector<int> OuterBoundary(const Scene& scene, const Graph& g, const std::ve
 
 }  // namespace
 
-ContactSurface BuildContactSurface(const Scene& scene) {
-  ContactSurface surface;
+CollisionMesh BuildCollisionMesh(const Scene& scene) {
+  CollisionMesh surface;
   const int n = scene.num_nodes();
   const Graph g = BuildGraph(scene);
   std::map<int, double> weight;

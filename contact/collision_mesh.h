@@ -37,7 +37,7 @@
 
 namespace ipstep {
 
-struct ContactSurface {
+struct CollisionMesh {
   std::vector<int> nodes;                 // contact nodes, ascending
   std::vector<double> weights;            // per entry of `nodes`
   std::vector<std::array<int, 2>> edges;  // 2D: boundary edges; 3D: springs (both nodes in `nodes`)
@@ -46,6 +46,6 @@ struct ContactSurface {
   std::vector<double> face_weights;       // per entry of `faces`
 };
 
-ContactSurface BuildContactSurface(const Scene& scene);
+CollisionMesh BuildCollisionMesh(const Scene& scene);
 
 }  // namespace ipstep
