@@ -3,6 +3,7 @@
 // Scenes are plain data; problems/scene_loader.h reads them from JSON.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,6 +42,16 @@ struct Damping {
   double stiffness_proportional = 0.0;  // beta [s]
 };
 
+// The contact surface a scene declares (key "surface"; the "grid", "chain"
+// and "particle" generators declare theirs). contact/collision_mesh.h builds
+// the collision mesh from it.
+struct Surface {
+  std::vector<std::array<int, 2>> edges;      // 2D boundary edges (3D: curves)
+  std::vector<std::array<int, 3>> triangles;  // 3D surface triangles
+  std::vector<int> points;                    // nodes in contact on their own (particles)
+  bool declared = false;
+};
+
 struct Scene {
   std::string name;    // scene name (file stem or built-in name)
   std::string source;  // file path it was read from, for error messages
@@ -52,6 +63,7 @@ struct Scene {
   std::vector<double> masses;      // [kg], one per node, > 0
 
   std::vector<Spring> springs;
+  Surface surface;
   std::vector<int> pinned;  // node indices held fixed
   std::vector<MovingNode> moving;
 

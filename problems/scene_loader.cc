@@ -49,10 +49,12 @@ const std::vector<std::string>& BuiltinEffects() {
 }
 
 const std::vector<std::string>& TopLevelKeys() {
-  static const auto* const keys = new std::vector<std::string>{
-      "name",     "description",     "dimension", "time_step", "steps",  "effects", "nodes",
-      "particle", "chain",           "grid",      "springs",   "pinned", "moving",  "gravity",
-      "damping",  "initial_velocity"};
+  static const auto* const keys =
+      new std::vector<std::string>{"name",   "description", "dimension", "time_step",
+                                   "steps",  "effects",     "nodes",     "particle",
+                                   "chain",  "grid",        "springs",   "pinned",
+                                   "moving", "gravity",     "damping",   "initial_velocity",
+                                   "surface"};
   return *keys;
 }
 
@@ -386,6 +388,7 @@ class SceneParser {
     ReadEffects(root);
     ReadNodes(root);
     ReadSprings(root);
+    ReadSurface(root);
     ReadGravity(root);
     ReadDamping(root);
     ReadEffectParameters(root);
@@ -609,7 +612,12 @@ class SceneParser {
     if (auto spring = chain.Find("spring")) {
       const SpringFamily family = ReadSpringFamily(*spring);
       for (int i = 0; i + 1 < count; ++i) AddGeneratedSpring(family, i, i + 1);
+      // The chain's segments are its contact surface.
+      for (int i = 0; i + 1 < count; ++i) scene_.surface.edges.push_back({i, i + 1});
+    } else {
+      for (int i = 0; i < count; ++i) scene_.surface.points.push_back(i);
     }
+    scene_.surface.declared = true;
   }
 
   void ReadGrid(const JsonNode& grid) {
@@ -666,6 +674,7 @@ class SceneParser {
       }
     }
 
+    DeclareGridSurface(grid.Has("structural"));
     if (auto structural = grid.Find("structural")) {
       const SpringFamily family = ReadSpringFamily(*structural);
       for (int row = 0; row < ny_; ++row) {
@@ -701,6 +710,103 @@ class SceneParser {
         }
       }
     }
+  }
+
+  // The grid's contact surface: with structural springs, its perimeter (2D)
+  // or two triangles per cell (3D, split along the (row, col) -> (row + 1,
+  // col + 1) diagonal); without, every node is a point.
+  void DeclareGridSurface(bool connected) {
+    Surface& surface = scene_.surface;
+    surface.declared = true;
+    const auto id = [this](int row, int col) { return row * nx_ + col; };
+    if (!connected) {
+      for (int i = 0; i < num_nodes(); ++i) surface.points.push_back(i);
+    } else if (dim() == 2) {
+      for (int col = 0; col + 1 < nx_; ++col) {
+        surface.edges.push_back({id(0, col), id(0, col + 1)});
+        surface.edges.push_back({id(ny_ - 1, col), id(ny_ - 1, col + 1)});
+      }
+      for (int row = 0; row + 1 < ny_; ++row) {
+        surface.edges.push_back({id(row, 0), id(row + 1, 0)});
+        surface.edges.push_back({id(row, nx_ - 1), id(row + 1, nx_ - 1)});
+      }
+    } else {
+      for (int row = 0; row + 1 < ny_; ++row) {
+        for (int col = 0; col + 1 < nx_; ++col) {
+          surface.triangles.push_back({id(row, col), id(row + 1, col), id(row + 1, col + 1)});
+          surface.triangles.push_back({id(row, col), id(row + 1, col + 1), id(row, col + 1)});
+        }
+      }
+    }
+  }
+
+  // ---- Surface -------------------------------------------------------------
+
+  // "surface": {"edges": [[i, j], ...], "triangles": [[i, j, k], ...],
+  // "points": [i, ...]} (triangles in 3D only); replaces a generator's.
+  void ReadSurface(const JsonNode& root) {
+    auto surface = root.Find("surface");
+    if (!surface) {
+      if (layout_ == Layout::kParticle) {
+        scene_.surface.points = {0};
+        scene_.surface.declared = true;
+      } else if (layout_ == Layout::kExplicit && scene_.springs.empty()) {
+        // Unconnected nodes: each is a particle.
+        for (int i = 0; i < num_nodes(); ++i) scene_.surface.points.push_back(i);
+        scene_.surface.declared = true;
+      }
+      return;
+    }
+    RequireEffect(*surface, "contact");
+    surface->ExpectObject({"edges", "triangles", "points"});
+    Surface declared;
+    declared.declared = true;
+    const auto read_entry = [&](const JsonNode& entry, int size) {
+      const std::vector<JsonNode> items = entry.Elements();
+      if (static_cast<int>(items.size()) != size) {
+        entry.Fail("must list " + std::to_string(size) + " node indices");
+      }
+      std::vector<int> nodes;
+      for (const JsonNode& item : items) {
+        const int64_t node = item.Integer();
+        if (node < 0 || node >= num_nodes()) {
+          item.Fail("node index " + std::to_string(node) + " out of range [0, " +
+                    std::to_string(num_nodes()) + ")");
+        }
+        if (std::find(nodes.begin(), nodes.end(), node) != nodes.end()) {
+          entry.Fail("repeats node " + std::to_string(node));
+        }
+        nodes.push_back(static_cast<int>(node));
+      }
+      return nodes;
+    };
+    if (auto edges = surface->Find("edges")) {
+      for (const JsonNode& entry : edges->Elements()) {
+        const std::vector<int> n = read_entry(entry, 2);
+        declared.edges.push_back({n[0], n[1]});
+      }
+    }
+    if (auto triangles = surface->Find("triangles")) {
+      if (dim() != 3) triangles->Fail("are only allowed when \"dimension\" is 3");
+      for (const JsonNode& entry : triangles->Elements()) {
+        const std::vector<int> n = read_entry(entry, 3);
+        declared.triangles.push_back({n[0], n[1], n[2]});
+      }
+    }
+    if (auto points = surface->Find("points")) {
+      for (const JsonNode& entry : points->Elements()) {
+        const int64_t node = entry.Integer();
+        if (node < 0 || node >= num_nodes()) {
+          entry.Fail("node index " + std::to_string(node) + " out of range [0, " +
+                     std::to_string(num_nodes()) + ")");
+        }
+        declared.points.push_back(static_cast<int>(node));
+      }
+    }
+    if (declared.edges.empty() && declared.triangles.empty() && declared.points.empty()) {
+      surface->Fail("declares no edges, triangles or points");
+    }
+    scene_.surface = std::move(declared);
   }
 
   // ---- Springs -----------------------------------------------------------

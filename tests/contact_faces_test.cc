@@ -15,6 +15,8 @@
 #include "contact/obstacle.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
+#include "core/input_error.h"
+#include "problems/scene_loader.h"
 #include "tests/finite_differences.h"
 
 namespace ipstep {
@@ -409,57 +411,75 @@ TEST(FaceTerms, JacobiansMatchFiniteDifferencesAndFailInside) {
   EXPECT_FALSE(edge_gap.Evaluate(f, &residual, nullptr));
 }
 
-TEST(CollisionMesh, GridFacesAreTheTrianglesOfBothDiagonals) {
-  // 3 x 3 nodes, spacing 0.5, structural + shear + bending springs.
-  Scene scene;
-  scene.dimension = 3;
-  const int n = 3;
+// The collision mesh is the declared surface: a 3 x 3 grid generator
+// declares two triangles per cell; edges are the triangles' (structural and
+// one diagonal, no bending or second diagonal), weights are areas.
+TEST(CollisionMesh, GridDeclaresTwoTrianglesPerCell) {
   const double a = 0.5;
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) {
-      scene.positions.insert(scene.positions.end(), {c * a, 0.0, r * a});
-      scene.masses.push_back(1.0);
+  const nlohmann::json json = {{"dimension", 3},
+                               {"effects", {"springs"}},
+                               {"grid",
+                                {{"nx", 3},
+                                 {"ny", 3},
+                                 {"width", 2 * a},
+                                 {"height", 2 * a},
+                                 {"plane", "xz"},
+                                 {"total_mass", 1},
+                                 {"structural", {{"model", "hookean"}, {"stiffness", 1}}},
+                                 {"shear", {{"model", "hookean"}, {"stiffness", 1}}},
+                                 {"bending", {{"model", "hookean"}, {"stiffness", 1}}}}}};
+  const Scene scene = ParseScene(json, "grid.json");
+  const CollisionMesh mesh = BuildCollisionMesh(scene);
+  EXPECT_EQ(mesh.nodes.size(), 9u);
+  EXPECT_EQ(mesh.edges.size(), 12u + 4u);  // structural + one diagonal per cell
+  ASSERT_EQ(mesh.faces.size(), 8u);
+  for (double w : mesh.face_weights) EXPECT_NEAR(w, a * a / 2, 1e-15);
+  double total = 0.0;
+  for (double w : mesh.weights) total += w;
+  EXPECT_NEAR(total, 4 * a * a, 1e-14);        // node weights share the area once
+  EXPECT_NEAR(mesh.weights[4], a * a, 1e-15);  // the centre node: six triangles
+  // Every interior point of a cell (off its diagonal) lies in exactly one face.
+  for (const V& p : {V(0.2, 0.0, -0.1), V(0.1, 0.0, -0.2), V(0.7, 0.0, -0.6)}) {
+    int covering = 0;
+    for (const auto& t : mesh.faces) {
+      const V q(p[0], 0.0, p[2]);
+      covering += PointTriangleDistance(q, ToPoint(scene.positions.data() + 3 * t[0], 3),
+                                        ToPoint(scene.positions.data() + 3 * t[1], 3),
+                                        ToPoint(scene.positions.data() + 3 * t[2], 3))
+                      .distance < 1e-15;
     }
+    EXPECT_EQ(covering, 1) << p.transpose();
   }
-  scene.velocities.assign(scene.positions.size(), 0.0);
-  auto id = [n](int r, int c) { return r * n + c; };
-  auto add = [&](int i, int j, double l) {
-    scene.springs.push_back(Spring{i, j, SpringModel::kHookean, 1.0, l});
-  };
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) {
-      if (c + 1 < n) add(id(r, c), id(r, c + 1), a);
-      if (r + 1 < n) add(id(r, c), id(r + 1, c), a);
-      if (c + 2 < n) add(id(r, c), id(r, c + 2), 2 * a);  // bending
-      if (r + 2 < n) add(id(r, c), id(r + 2, c), 2 * a);
-      if (r + 1 < n && c + 1 < n) {
-        add(id(r, c), id(r + 1, c + 1), a * std::sqrt(2.0));
-        add(id(r, c + 1), id(r + 1, c), a * std::sqrt(2.0));
-      }
-    }
+}
+
+// Listed nodes with springs must declare their surface; declared primitives
+// must not be degenerate.
+TEST(CollisionMesh, UndeclaredOrDegenerateSurfaceIsAnInputError) {
+  Scene scene;
+  scene.source = "s.json";
+  scene.dimension = 3;
+  scene.positions = {0, 0, 0, 1, 0, 0, 2, 0, 0};
+  scene.masses = {1, 1, 1};
+  scene.springs = {Spring{0, 1, SpringModel::kHookean, 1.0, 1.0}};
+  EXPECT_THROW(BuildCollisionMesh(scene), InputError);
+  scene.surface.declared = true;
+  scene.surface.triangles = {{0, 1, 2}};  // collinear
+  try {
+    BuildCollisionMesh(scene);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.json: surface: triangle (0, 1, 2) is degenerate"),
+              std::string::npos)
+        << e.what();
   }
-  const CollisionMesh surface = BuildCollisionMesh(scene);
-  EXPECT_EQ(surface.edges.size(), 12u + 8u);  // structural + shear, no bending
-  ASSERT_EQ(surface.faces.size(), 16u);       // four per quad
-  ASSERT_EQ(surface.face_weights.size(), 16u);
-  for (size_t f = 0; f < surface.faces.size(); ++f) {
-    const auto& t = surface.faces[f];
-    EXPECT_LT(t[0], t[1]);
-    EXPECT_LT(t[1], t[2]);
-    EXPECT_NEAR(surface.face_weights[f], a * a / 4, 1e-15);
-  }
-  // Every interior point of a quad (off the diagonals) lies in exactly two
-  // faces, e.g. (0.2, 0, 0.1) in the first quad.
-  int covering = 0;
-  for (const auto& t : surface.faces) {
-    const V p(0.2, 0.0, 0.1);
-    covering +=
-        PointTriangleDistance(p, V(scene.positions[3 * t[0]], 0, scene.positions[3 * t[0] + 2]),
-                              V(scene.positions[3 * t[1]], 0, scene.positions[3 * t[1] + 2]),
-                              V(scene.positions[3 * t[2]], 0, scene.positions[3 * t[2] + 2]))
-            .distance < 1e-15;
-  }
-  EXPECT_EQ(covering, 2);
+  scene.surface.triangles.clear();
+  scene.surface.edges = {{0, 1}};
+  scene.surface.points = {2};
+  const CollisionMesh mesh = BuildCollisionMesh(scene);
+  ASSERT_EQ(mesh.nodes.size(), 3u);
+  EXPECT_DOUBLE_EQ(mesh.weights[0], 0.5);  // half the edge
+  EXPECT_DOUBLE_EQ(mesh.weights[2], 1.0);  // a point
+  EXPECT_DOUBLE_EQ(mesh.edge_weights[0], 0.25);
 }
 
 }  // namespace
