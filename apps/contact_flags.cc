@@ -4,7 +4,6 @@
 #include <string>
 
 #include "apps/command_line.h"
-#include "contact/contact_overrides.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "problems/scene.h"
@@ -22,38 +21,28 @@ DEFINE_int32(friction_iterations, 0,
              "the scene's (1 when the scene gives none)");
 
 namespace ipstep {
-namespace {
-
 // Each flag is used only when given; an explicit 0 is out of range, not "unset".
-ContactOverrides OverridesFromFlags() {
-  ContactOverrides o;
+void AddContactFlagOverrides(std::map<std::string, nlohmann::json>* overrides) {
   if (!FlagIsDefault("contact_kappa")) {
-    o.kappa = CheckFlagRange("contact_kappa", FLAGS_contact_kappa, 0.0, limits::kMaxKappa, "",
-                             "the scene's kappa", /*min_open=*/true);
+    (*overrides)["contact"]["kappa"] =
+        CheckFlagRange("contact_kappa", FLAGS_contact_kappa, 0.0, limits::kMaxKappa, "",
+                       "the scene's kappa", /*min_open=*/true);
   }
   if (!FlagIsDefault("contact_dhat")) {
-    o.d_hat = CheckFlagRange("contact_dhat", FLAGS_contact_dhat, limits::kMinDhat, limits::kMaxDhat,
-                             "m", "the scene's dhat");
+    (*overrides)["contact"]["dhat"] =
+        CheckFlagRange("contact_dhat", FLAGS_contact_dhat, limits::kMinDhat, limits::kMaxDhat, "m",
+                       "the scene's dhat");
   }
   if (!FlagIsDefault("friction_mu")) {
-    o.mu = CheckFlagRange("friction_mu", FLAGS_friction_mu, 0.0, limits::kMaxFrictionMu, "",
-                          "the scene's mu");
+    (*overrides)["friction"]["mu"] = CheckFlagRange("friction_mu", FLAGS_friction_mu, 0.0,
+                                                    limits::kMaxFrictionMu, "", "the scene's mu");
   }
   if (!FlagIsDefault("friction_iterations")) {
-    o.friction_iterations =
+    (*overrides)["friction"]["iterations"] =
         CheckFlagRange("friction_iterations", FLAGS_friction_iterations, 1,
                        limits::kMaxFrictionIterations, "the scene's iterations");
   }
-  return o;
 }
-
-// Installed before main(): the flags are read when a scene's effects are built.
-const bool kInstalled = [] {
-  SetContactOverridesProvider(OverridesFromFlags);
-  return true;
-}();
-
-}  // namespace
 
 void CheckContactFlagsApply(const Scene& scene) {
   struct {

@@ -3,9 +3,10 @@
 #include <cmath>
 
 #include "apps/command_line.h"
+#include "apps/contact_flags.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
-#include "energies/effect_registry.h"
+#include "sim/default_effects.h"
 
 DEFINE_string(scene, "oscillator",
               "Built-in scene name (oscillator, spring_pendulum, cloth, fpu) or path to a JSON "
@@ -135,6 +136,7 @@ SimulationOptions SimulationOptionsFromFlags() {
   }
   o.energy_tolerance = CheckFlagRange("energy_tolerance", FLAGS_energy_tolerance, 0.0, 100.0, "",
                                       "the tolerance 0.1; 0 is no check");
+  AddContactFlagOverrides(&o.effect_overrides);
   return o;
 }
 
@@ -144,7 +146,7 @@ SceneLoadOptions SceneLoadOptionsFromFlags() {
     o.grid_size =
         CheckFlagRange("grid_size", FLAGS_grid_size, 2, limits::kMaxGridSize, "the scene's size");
   }
-  o.extra_effects = EffectRegistry::Global().UserNames();
+  o.extra_effects = DefaultEffects().UserNames();
   return o;
 }
 

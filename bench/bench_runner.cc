@@ -1,4 +1,5 @@
 #include "bench/bench_runner.h"
+#include "sim/default_effects.h"
 
 #include <algorithm>
 #include <chrono>
@@ -153,7 +154,7 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
   const auto setup_start = Clock::now();
   SceneLoadOptions load;
   load.grid_size = config.grid_size;
-  load.extra_effects = EffectRegistry::Global().UserNames();
+  load.extra_effects = DefaultEffects().UserNames();
   const Scene scene = LoadScene(config.scene, load);
   SimulationOptions options;
   options.integrator.name = config.integrator;

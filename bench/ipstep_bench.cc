@@ -34,6 +34,7 @@
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 
 DEFINE_string(scenes, "oscillator", "Comma-separated scene names or JSON paths");
 DEFINE_string(grid_sizes, "scene",
@@ -232,7 +233,7 @@ int Run() {
   std::vector<SceneSetup> setups;
   for (const std::string& name : scenes) {
     SceneLoadOptions defaults;
-    defaults.extra_effects = EffectRegistry::Global().UserNames();
+    defaults.extra_effects = DefaultEffects().UserNames();
     const Scene scene = LoadScene(name, defaults);
     std::set<int> sizes;
     for (int size : grid_sizes) {

@@ -2,7 +2,8 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS ipstep ipstep_scene EXPORT ipstepTargets
+get_property(ipstep_libraries GLOBAL PROPERTY IPSTEP_LIBRARIES)
+install(TARGETS ipstep ${ipstep_libraries} EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS ipstep_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

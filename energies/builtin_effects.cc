@@ -1,10 +1,9 @@
-// Registration of the built-in effects: gravity, springs, damping, and the
-// contact effects (contact/contact_effects.h).
+// Registration of the effects the scene loader reads natively: gravity,
+// springs, damping.
 #include <array>
 #include <cmath>
 #include <sstream>
 
-#include "contact/contact_effects.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "energies/gravity_potential.h"
@@ -126,9 +125,6 @@ void RegisterBuiltinEffects(EffectRegistry* registry) {
   registry->Register("springs", "spring networks: hookean, squared_strain, quartic", BuildSprings);
   registry->Register("damping", "Rayleigh dissipation, mass- and stiffness-proportional",
                      BuildDamping);
-  registry->loader_native_ = registry->Names();
-  // Contact and friction: parameters from their own scene objects (contact/).
-  RegisterContactEffects(registry);
 }
 
 }  // namespace ipstep

@@ -1,17 +1,12 @@
 #include "energies/effect_registry.h"
 
+#include <algorithm>
 #include <stdexcept>
+#include <vector>
+
+#include "problems/scene.h"
 
 namespace ipstep {
-
-EffectRegistry& EffectRegistry::Global() {
-  static EffectRegistry* registry = [] {
-    auto* r = new EffectRegistry;
-    RegisterBuiltinEffects(r);
-    return r;
-  }();
-  return *registry;
-}
 
 void EffectRegistry::Register(const std::string& name, const std::string& description,
                               EffectFactory factory) {
@@ -37,7 +32,8 @@ std::set<std::string> EffectRegistry::Names() const {
 std::set<std::string> EffectRegistry::UserNames() const {
   std::set<std::string> names;
   for (const auto& [name, info] : effects_) {
-    if (!loader_native_.count(name)) names.insert(name);
+    const std::vector<std::string>& native = SceneNativeEffects();
+    if (std::find(native.begin(), native.end(), name) == native.end()) names.insert(name);
   }
   return names;
 }

@@ -1,7 +1,11 @@
 // Effects are named families of energy terms ("springs", "damping", ...). A
-// scene lists the effects it calls for and only those are built. Built-in
-// effects are registered in energies/builtin_effects.cc; a program or test adds
-// its own with EffectRegistry::Global().Register(...) before loading scenes.
+// scene lists the effects it calls for and only those are built. A registry is
+// an object the program owns: sim/default_effects.h gives the default one
+// (gravity, springs, damping from energies/builtin_effects.cc, contact and
+// friction from contact/contact_effects.h); a program adds its own effects to a
+// copy and hands it to the simulation (SimulationOptions::effects) and the
+// scene loader (SceneLoadOptions::extra_effects = registry.UserNames()).
+// Effects read their parameters with core/json_node.h.
 #pragma once
 
 #include <functional>
@@ -29,25 +33,23 @@ struct EffectInfo {
 
 class EffectRegistry {
  public:
-  // The process-wide registry, with the built-in effects already registered.
-  static EffectRegistry& Global();
-
   // Throws std::invalid_argument if the name is taken or empty.
   void Register(const std::string& name, const std::string& description, EffectFactory factory);
   bool Has(const std::string& name) const;
   const EffectInfo& Get(const std::string& name) const;
   std::set<std::string> Names() const;
   // Effects whose parameters are a top-level scene object under the effect's
-  // name: every effect but gravity, springs and damping, which the scene loader
-  // reads natively. Pass them as SceneLoadOptions::extra_effects.
+  // name: every effect but those the scene loader reads natively
+  // (SceneNativeEffects(), problems/scene.h). Pass them as
+  // SceneLoadOptions::extra_effects.
   std::set<std::string> UserNames() const;
 
  private:
   std::map<std::string, EffectInfo> effects_;
-  std::set<std::string> loader_native_;  // gravity, springs, damping
-  friend void RegisterBuiltinEffects(EffectRegistry* registry);
 };
 
+// Registers the effects the scene loader reads natively: gravity, springs,
+// damping (energies/builtin_effects.cc).
 void RegisterBuiltinEffects(EffectRegistry* registry);
 
 }  // namespace ipstep

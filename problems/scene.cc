@@ -16,6 +16,11 @@ const char* SpringModelName(SpringModel model) {
   return "unknown";
 }
 
+const std::vector<std::string>& SceneNativeEffects() {
+  static const auto* const effects = new std::vector<std::string>{"gravity", "springs", "damping"};
+  return *effects;
+}
+
 bool Scene::HasEffect(const std::string& effect) const {
   return std::find(effects.begin(), effects.end(), effect) != effects.end();
 }

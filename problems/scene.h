@@ -52,6 +52,12 @@ struct Surface {
   bool declared = false;
 };
 
+// Effects whose data the scene loader reads itself (top-level keys
+// "gravity", "springs"/"grid"/"chain", "damping"); energies/builtin_effects.cc
+// builds them. Every other effect's parameters are the top-level object under
+// its name.
+const std::vector<std::string>& SceneNativeEffects();
+
 struct Scene {
   std::string name;    // scene name (file stem or built-in name)
   std::string source;  // file path it was read from, for error messages

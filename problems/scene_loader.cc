@@ -20,6 +20,7 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "core/json_node.h"
 
 namespace ipstep {
 namespace internal {
@@ -43,10 +44,7 @@ constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
 constexpr char kOneNodeSource[] =
     "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\"";
 
-const std::vector<std::string>& BuiltinEffects() {
-  static const auto* const effects = new std::vector<std::string>{"gravity", "springs", "damping"};
-  return *effects;
-}
+const std::vector<std::string>& BuiltinEffects() { return SceneNativeEffects(); }
 
 const std::vector<std::string>& TopLevelKeys() {
   static const auto* const keys =
@@ -71,158 +69,11 @@ std::string Join(const std::vector<std::string>& items, const std::string& separ
   return joined;
 }
 
-// A name from the input, quoted and cut for a message.
-std::string Quoted(const std::string& text) { return "\"" + ClipInput(text) + "\""; }
+double ReadPositive(const JsonNode& node) { return node.Positive(); }
 
-// Shortest decimal form that reads back as the same double.
-std::string FormatNumber(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[32];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
-}
-
-// A short description of a JSON value for "got ..." in messages. Containers are
-// only named: dumping them could be long (or deeply recursive).
-std::string Describe(const json& value) {
-  switch (value.type()) {
-    case json::value_t::object:
-      return "an object";
-    case json::value_t::array:
-      return "an array of " + std::to_string(value.size()) + " elements";
-    case json::value_t::string: {
-      std::string text = value.get_ref<const std::string&>();
-      if (text.size() > 40) text = text.substr(0, 37) + "...";
-      return "the string " + json(text).dump(-1, ' ', false, json::error_handler_t::replace);
-    }
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-      return value.dump();
-    case json::value_t::number_float:
-      return FormatNumber(value.get<double>());
-    case json::value_t::boolean:
-      return value.get<bool>() ? "true" : "false";
-    case json::value_t::null:
-      return "null";
-    default:
-      return value.type_name();
-  }
-}
-
-// A JSON value together with its key path (e.g. "springs[3].stiffness") and
-// the source name, so that every check can report where it failed.
-class JsonNode {
- public:
-  JsonNode(const json& value, std::string path, const std::string& source)
-      : value_(&value), path_(std::move(path)), source_(&source) {}
-
-  const json& value() const { return *value_; }
-  const std::string& path() const { return path_; }
-
-  [[noreturn]] void Fail(const std::string& what) const { FailAt(path_, what); }
-  [[noreturn]] void FailAt(const std::string& path, const std::string& what) const {
-    throw InputError(*source_, path.empty() ? "(top level)" : path, what);
-  }
-  std::string ChildPath(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
-  }
-
-  // Requires an object whose keys all appear in `allowed`.
-  void ExpectObject(const std::vector<std::string>& allowed) const {
-    if (!value_->is_object()) Fail("must be an object, got " + Describe(*value_));
-    for (const auto& item : value_->items()) {
-      if (!Contains(allowed, item.key())) {
-        FailAt(ChildPath(item.key()), "unknown key (allowed keys: " + Join(allowed) + ")");
-      }
-    }
-  }
-  bool Has(const std::string& key) const { return value_->is_object() && value_->contains(key); }
-  std::optional<JsonNode> Find(const std::string& key) const {
-    if (!Has(key)) return std::nullopt;
-    return JsonNode((*value_)[key], ChildPath(key), *source_);
-  }
-  JsonNode Get(const std::string& key) const {
-    if (!Has(key)) FailAt(ChildPath(key), "required key is missing");
-    return JsonNode((*value_)[key], ChildPath(key), *source_);
-  }
-
-  std::vector<JsonNode> Elements() const {
-    if (!value_->is_array()) Fail("must be an array, got " + Describe(*value_));
-    std::vector<JsonNode> elements;
-    elements.reserve(value_->size());
-    for (size_t i = 0; i < value_->size(); ++i) {
-      elements.emplace_back((*value_)[i], path_ + "[" + std::to_string(i) + "]", *source_);
-    }
-    return elements;
-  }
-
-  double Number() const {
-    if (!value_->is_number()) Fail("must be a number, got " + Describe(*value_));
-    const double number = value_->get<double>();
-    if (!std::isfinite(number)) Fail("must be finite, got " + FormatNumber(number));
-    return number;
-  }
-  int64_t Integer() const {
-    if (value_->is_number_unsigned()) {
-      const uint64_t number = value_->get<uint64_t>();
-      if (number > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) {
-        Fail("is out of range, got " + Describe(*value_));
-      }
-      return static_cast<int64_t>(number);
-    }
-    if (!value_->is_number_integer()) Fail("must be an integer, got " + Describe(*value_));
-    return value_->get<int64_t>();
-  }
-  std::string String() const {
-    if (!value_->is_string()) Fail("must be a string, got " + Describe(*value_));
-    return value_->get<std::string>();
-  }
-  // An array of `size` finite numbers (a point or vector in `size` dimensions),
-  // each in [-bound, bound] (`unit` for the message).
-  std::vector<double> Vector(int size, double bound, const std::string& unit) const {
-    if (!value_->is_array() || static_cast<int>(value_->size()) != size) {
-      Fail("must be an array of " + std::to_string(size) +
-           " numbers (the scene's dimension), got " + Describe(*value_));
-    }
-    std::vector<double> vector;
-    for (const JsonNode& element : Elements()) {
-      const double number = element.Number();
-      if (!(std::abs(number) <= bound)) {
-        element.Fail("must be in " + limits::RangeText(-bound, bound, unit) + ", got " +
-                     FormatNumber(number));
-      }
-      vector.push_back(number);
-    }
-    return vector;
-  }
-  std::vector<double> Position(int size) const { return Vector(size, limits::kMaxCoordinate, "m"); }
-  std::vector<double> Velocity(int size) const { return Vector(size, limits::kMaxSpeed, "m/s"); }
-
- private:
-  const json* value_;
-  std::string path_;
-  const std::string* source_;
-};
-
-double ReadPositive(const JsonNode& node) {
-  const double number = node.Number();
-  if (!(number > 0)) node.Fail("must be > 0, got " + FormatNumber(number));
-  return number;
-}
-
-// A number in [min, max] (or (min, max] with `min_open`).
 double ReadInRange(const JsonNode& node, double min, double max, const std::string& unit,
                    bool min_open = false) {
-  const double number = node.Number();
-  if (!(min_open ? number > min : number >= min) || !(number <= max)) {
-    node.Fail("must be in " + limits::RangeText(min, max, unit, min_open) + ", got " +
-              FormatNumber(number));
-  }
-  return number;
+  return node.InRange(min, max, unit, min_open);
 }
 
 double ReadStiffness(const JsonNode& node) {
@@ -234,12 +85,7 @@ double ReadMass(const JsonNode& node) {
 }
 
 int ReadIntInRange(const JsonNode& node, int64_t min, int64_t max) {
-  const int64_t number = node.Integer();
-  if (number < min || number > max) {
-    node.Fail("must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
-              "], got " + std::to_string(number));
-  }
-  return static_cast<int>(number);
+  return node.IntegerInRange(min, max);
 }
 
 SpringModel ReadSpringModel(const JsonNode& node) {

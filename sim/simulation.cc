@@ -13,6 +13,7 @@
 #include "energies/effect_registry.h"
 #include "energies/inertia.h"
 #include "energies/term_builder.h"
+#include "sim/default_effects.h"
 #include "sim/energy_balance.h"
 
 namespace ipstep {
@@ -86,14 +87,27 @@ void Simulation::BuildPotential() {
           TermKind::kInertia, {i}, builder.context(), i, state_.mass[i]);
     }
   }
-  const EffectRegistry& registry = EffectRegistry::Global();
+  const EffectRegistry& registry = options_.effects ? *options_.effects : DefaultEffects();
+  for (const auto& [effect, values] : options_.effect_overrides) {
+    if (!scene_.HasEffect(effect)) {
+      throw InputError("options", "effect_overrides." + effect,
+                       "scene " + scene_.source + " does not list the effect '" + effect + "'");
+    }
+    if (!values.is_object()) {
+      throw InputError("options", "effect_overrides." + effect, "must be an object of parameters");
+    }
+  }
   for (const std::string& effect : scene_.effects) {
     if (!registry.Has(effect)) {
       throw InputError(scene_.source, "effects", "effect '" + effect + "' is not registered");
     }
     auto it = scene_.effect_parameters.find(effect);
-    const nlohmann::json parameters =
+    nlohmann::json parameters =
         it == scene_.effect_parameters.end() ? nlohmann::json() : it->second;
+    auto override_it = options_.effect_overrides.find(effect);
+    if (override_it != options_.effect_overrides.end() && parameters.is_object()) {
+      for (const auto& item : override_it->second.items()) parameters[item.key()] = item.value();
+    }
     builder.set_family(effect);
     effect_summaries_.push_back(registry.Get(effect).factory(builder, parameters));
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "core/forces.h"
 #include "core/incremental_potential.h"
 #include "core/state.h"
+#include "energies/effect_registry.h"
 #include "integrators/integrator.h"
 #include "problems/scene.h"
 #include "solver/step_solver.h"
@@ -29,6 +31,14 @@ struct SimulationOptions {
   // A failed step is retried from its start as 2, 4, ... substeps, up to this
   // many (1: no retry); the run then continues at the scene's step.
   int max_substeps = 1;
+  // The effects the scene's "effects" are looked up in; null: DefaultEffects()
+  // (sim/default_effects.h). Must outlive the simulation's construction.
+  const EffectRegistry* effects = nullptr;
+  // Per effect name, parameters that replace the scene's (merged key by key
+  // into the effect's parameters object, e.g. {"contact": {"kappa": 1e5}});
+  // an override for an effect the scene does not list is an InputError
+  // naming "effect_overrides.<effect>".
+  std::map<std::string, nlohmann::json> effect_overrides;
 };
 
 struct StepReport {

@@ -19,6 +19,7 @@
 
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 #include "sim/simulation.h"
 #include "solver/optimizer_options.h"
 
@@ -69,7 +70,7 @@ Record RunCase(const Case& c) {
     scene_name = std::string(IPSTEP_SOURCE_DIR) + "/" + scene_name;
   }
   SceneLoadOptions load;
-  load.extra_effects = EffectRegistry::Global().UserNames();
+  load.extra_effects = DefaultEffects().UserNames();
   const Scene scene = LoadScene(scene_name, load);
   SimulationOptions options;
   options.integrator.name = c.integrator;

@@ -20,6 +20,7 @@
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 #include "sim/simulation.h"
 #include "tests/test_scenes.h"
 
@@ -54,33 +55,39 @@ class GapProbe : public StepFilter {
   const ContactFilter* filter_;
 };
 
-void RegisterProbe() {
-  static const bool registered = [] {
-    EffectRegistry::Global().Register("gap_probe", "test: records gaps at accepted iterates",
-                                      [](TermBuilder& builder, const json&) {
-                                        const ContactFilter* filter = nullptr;
-                                        for (const auto& f : builder.potential()->step_filters()) {
-                                          if (auto* m = dynamic_cast<const ContactFilter*>(f.get()))
-                                            filter = m;
-                                        }
-                                        if (filter == nullptr)
-                                          throw std::logic_error("gap_probe needs contact");
-                                        builder.AddStepFilter(std::make_unique<GapProbe>(filter));
-                                        return std::string("gap probe");
-                                      });
-    return true;
+// The tests' registry: the defaults plus the gap probe.
+const EffectRegistry& TestEffects() {
+  static const EffectRegistry* const effects = [] {
+    auto* registry = new EffectRegistry(MakeDefaultEffects());
+    registry->Register("gap_probe", "test: records gaps at accepted iterates",
+                       [](TermBuilder& builder, const json&) {
+                         const ContactFilter* filter = nullptr;
+                         for (const auto& f : builder.potential()->step_filters()) {
+                           if (auto* m = dynamic_cast<const ContactFilter*>(f.get())) filter = m;
+                         }
+                         if (filter == nullptr) throw std::logic_error("gap_probe needs contact");
+                         builder.AddStepFilter(std::make_unique<GapProbe>(filter));
+                         return std::string("gap probe");
+                       });
+    return registry;
   }();
-  (void)registered;
+  return *effects;
 }
 
 SceneLoadOptions ContactLoadOptions() {
   SceneLoadOptions options;
-  options.extra_effects = EffectRegistry::Global().UserNames();
+  options.extra_effects = TestEffects().UserNames();
+  return options;
+}
+
+SimulationOptions Options(const std::string& integrator, const std::string& optimizer, double dt,
+                          double tolerance = 1e-10) {
+  SimulationOptions options = testing::Options(integrator, optimizer, dt, tolerance);
+  options.effects = &TestEffects();
   return options;
 }
 
 Scene LoadWithProbe(const std::string& name_or_json, bool is_json = false) {
-  RegisterProbe();
   Scene scene = is_json ? ParseScene(name_or_json, "test.json", ContactLoadOptions())
                         : LoadScene(name_or_json, ContactLoadOptions());
   scene.effects.push_back("gap_probe");
@@ -113,7 +120,7 @@ class ContactScenes : public ::testing::TestWithParam<SceneCase> {};
 TEST_P(ContactScenes, NoPenetrationAtAnyAcceptedIterate) {
   const SceneCase& c = GetParam();
   Scene scene = LoadWithProbe(c.scene);
-  SimulationOptions options = testing::Options(c.integrator, c.optimizer, c.dt, 1e-5);
+  SimulationOptions options = Options(c.integrator, c.optimizer, c.dt, 1e-5);
   options.optimizer.max_iterations = c.optimizer == "newton" ? 500 : 20000;
   g_probe = ProbeRecord{};
   Simulation sim(scene, options);
@@ -193,7 +200,7 @@ TEST(ContactTunnelling, FastParticleIsStoppedByAThinWall) {
     for (const char* integrator : {"backward_euler", "newmark"}) {
       Scene scene = LoadWithProbe(kWallScene, true);
       g_probe = ProbeRecord{};
-      SimulationOptions options = testing::Options(integrator, optimizer, 0.01, 1e-6);
+      SimulationOptions options = Options(integrator, optimizer, 0.01, 1e-6);
       options.optimizer.max_iterations = 50000;
       Simulation sim(scene, options);
       for (int step = 0; step < 5; ++step) {
@@ -222,7 +229,7 @@ TEST(ContactTunnelling, FastParticleIsStoppedByAnEdge) {
     for (const char* integrator : {"backward_euler", "newmark"}) {
       Scene scene = LoadWithProbe(kEdgeScene, true);
       g_probe = ProbeRecord{};
-      SimulationOptions options = testing::Options(integrator, optimizer, 0.01, 1e-6);
+      SimulationOptions options = Options(integrator, optimizer, 0.01, 1e-6);
       options.optimizer.max_iterations = 50000;
       Simulation sim(scene, options);
       ASSERT_EQ(Filter(sim).mesh().edges.size(), 1u);
@@ -239,7 +246,7 @@ TEST(ContactTunnelling, FastParticleIsStoppedByAnEdge) {
 void ExpectInputError(json scene, const std::string& key, const std::string& what = "") {
   try {
     Simulation sim(ParseScene(scene, "bad.json", ContactLoadOptions()),
-                   testing::Options("backward_euler", "newton", 0.01));
+                   Options("backward_euler", "newton", 0.01));
     ADD_FAILURE() << "no error for " << key;
   } catch (const InputError& e) {
     const std::string message = e.what();
@@ -262,7 +269,7 @@ TEST(ContactNewmark, ImpactsDoNotCreateEnergy) {
        {{"dhat", 0.005},
         {"obstacles", {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {0, 1}}}}}}}};
   Simulation sim(ParseScene(scene, "bounce.json", ContactLoadOptions()),
-                 testing::Options("newmark", "newton", 0.01, 1e-5));
+                 Options("newmark", "newton", 0.01, 1e-5));
   const double initial = sim.Energies().total();
   int free_flight_steps = 0;
   for (int step = 0; step < 200; ++step) {
@@ -300,7 +307,7 @@ TEST(ContactNewmark, ClothSphereDrapesWithoutEnergyGrowth) {
     int steps;
   };
   for (const Case& c : {Case{0.5, 0.0025, 400}, Case{0.55, 0.005, 200}}) {
-    SimulationOptions options = testing::Options("newmark", "newton", c.h, 1e-5);
+    SimulationOptions options = Options("newmark", "newton", c.h, 1e-5);
     const double beta = (c.gamma + 0.5) * (c.gamma + 0.5) / 4.0;
     options.integrator.newmark_gamma = c.gamma;
     options.integrator.newmark_beta = beta;
@@ -328,8 +335,7 @@ TEST(ContactNewmark, ClothSphereDrapesWithoutEnergyGrowth) {
 // t_{n+1} within the solves of step 34 ("infeasible state after the step"),
 // and every later step then started inside the ceiling ("infeasible start").
 TEST(ContactNewmark, SqueezeUnderAMovingCeiling) {
-  Simulation sim(LoadScene("squeeze", ContactLoadOptions()),
-                 testing::Options("newmark", "newton", 0, 1e-5));
+  Simulation sim(LoadScene("squeeze", ContactLoadOptions()), Options("newmark", "newton", 0, 1e-5));
   for (int step = 0; step < 50; ++step) {
     const StepReport r = sim.Step();
     EXPECT_TRUE(r.converged) << "step " << r.step << " " << r.status << " " << r.residual;
@@ -348,7 +354,7 @@ TEST(ContactNewmark, SqueezeUnderAMovingCeiling) {
 TEST(ContactFriction, SlopeNewtonIterations) {
   for (const char* integrator : {"backward_euler", "newmark"}) {
     Simulation sim(LoadScene("slope", ContactLoadOptions()),
-                   testing::Options(integrator, "newton", 0, 1e-5));
+                   Options(integrator, "newton", 0, 1e-5));
     // Iteration numbers keep counting over Ceres restarts.
     int last_logged = 0, decreases = 0;
     sim.set_iteration_sink([&](const IterationRecord& record) {
@@ -396,7 +402,7 @@ TEST(ContactTunnelling, EdgeDoesNotSweepAcrossACircle) {
     for (const char* integrator : {"backward_euler", "newmark"}) {
       Scene scene = LoadWithProbe(kEdgeOverCircleScene, true);
       g_probe = ProbeRecord{};
-      Simulation sim(scene, testing::Options(integrator, optimizer, 0.01, 1e-5));
+      Simulation sim(scene, Options(integrator, optimizer, 0.01, 1e-5));
       for (int step = 0; step < 3; ++step) {
         const StepReport r = sim.Step();
         EXPECT_GT(sim.state().x[1], 0.01) << optimizer << " " << integrator << " step " << step;
@@ -426,7 +432,7 @@ TEST(ContactEdges, BarRestsOnACircle) {
     scene["nodes"]["positions"] = {{-0.1, 0.01 + 1e-8}, {0.1, 0.01 + 1e-8}};
     scene["nodes"]["velocities"] = {{0, 0}, {0, 0}};
     Simulation sim(ParseScene(scene, "bar.json", ContactLoadOptions()),
-                   testing::Options(integrator, "newton", 0.01, 1e-6));
+                   Options(integrator, "newton", 0.01, 1e-6));
     for (int step = 0; step < 50; ++step) {
       const StepReport r = sim.Step();
       ASSERT_TRUE(r.converged) << integrator << " step " << step << " " << r.status << " "
@@ -456,7 +462,7 @@ TEST(ContactEdges, FastSegmentIsStoppedByACircle) {
       scene["contact"]["obstacles"][0]["radius"] = 0.02;
       Scene loaded = LoadWithProbe(scene.dump(), true);
       g_probe = ProbeRecord{};
-      Simulation sim(loaded, testing::Options(integrator, optimizer, 0.01, 1e-5));
+      Simulation sim(loaded, Options(integrator, optimizer, 0.01, 1e-5));
       for (int step = 0; step < 3; ++step) {
         const StepReport r = sim.Step();
         EXPECT_EQ(r.status.find("infeasible"), std::string::npos) << r.status;
@@ -480,7 +486,7 @@ TEST(ContactEdges, ClothSpringsStayOutsideTheSphere) {
   for (const char* integrator : {"backward_euler", "newmark"}) {
     Scene scene = LoadWithProbe("cloth_sphere");
     g_probe = ProbeRecord{};
-    Simulation sim(scene, testing::Options(integrator, "newton", 0, 1e-5));
+    Simulation sim(scene, Options(integrator, "newton", 0, 1e-5));
     const CollisionMesh& surface = Filter(sim).mesh();
     ASSERT_EQ(surface.edges.size(), 261u);  // 9*10*2 structural + 81 diagonals
     double closest = std::numeric_limits<double>::infinity();
@@ -532,7 +538,7 @@ double SlideDistance(double tan_theta, double mu, double h, int steps,
                   {"obstacles", {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {nx, ny}}}}}}},
                 {"friction", {{"mu", mu}, {"epsilon_v", 1e-4}, {"iterations", 2}}}};
   Simulation sim(ParseScene(scene, "slope_test.json", ContactLoadOptions()),
-                 testing::Options(integrator, "newton", h, 1e-6));
+                 Options(integrator, "newton", h, 1e-6));
   const Eigen::Vector2d down(-std::cos(theta), -std::sin(theta));  // down the slope
   const Eigen::Vector2d x0 = sim.state().x.head<2>();
   for (int step = 0; step < steps; ++step) {
@@ -574,7 +580,7 @@ TEST(ContactFriction, EnergyNeverIncreasesWithBackwardEuler) {
   scene["grid"]["origin"] = {-0.5, 0.01};  // bottom 1 cm above the ground
   scene["initial_velocity"] = {2.0, -0.5};
   Simulation sim(ParseScene(scene, "energy_test.json", ContactLoadOptions()),
-                 testing::Options("backward_euler", "newton", 0.01, 1e-5));
+                 Options("backward_euler", "newton", 0.01, 1e-5));
   double previous = sim.Energies().total();
   for (int step = 0; step < 25; ++step) {
     const StepReport r = sim.Step();
@@ -668,7 +674,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
   for (const char* integrator : {"backward_euler", "newmark"}) {
     Scene loaded = LoadWithProbe(scene.dump(), true);
     g_probe = ProbeRecord{};
-    Simulation sim(loaded, testing::Options(integrator, "newton", 0, 1e-5));
+    Simulation sim(loaded, Options(integrator, "newton", 0, 1e-5));
     const CollisionMesh& surface = Filter(sim).mesh();
     ASSERT_EQ(surface.faces.size(), 25u * 2u);
     // At the start no spring passes within R: only the faces can hold it.
@@ -780,7 +786,7 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
                         Case{"backward_euler", "lbfgs", 30}}) {
     Scene loaded = LoadWithProbe(scene.dump(), true);
     g_probe = ProbeRecord{};
-    SimulationOptions options = testing::Options(c.integrator, c.optimizer, 0, 1e-5);
+    SimulationOptions options = Options(c.integrator, c.optimizer, 0, 1e-5);
     options.optimizer.max_iterations = std::string(c.optimizer) == "newton" ? 500 : 20000;
     Simulation sim(loaded, options);
     const ContactFilter& filter = Filter(sim);
@@ -803,6 +809,33 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
     EXPECT_FALSE(g_probe.nan);
     std::printf("%s %s: closest spring / face %.3g mm from a box edge / corner\n", c.integrator,
                 c.optimizer, 1e3 * closest);
+  }
+}
+
+}  // namespace
+}  // namespace ipstep
+
+namespace ipstep {
+namespace {
+
+// Flag overrides reach the effects through the options object (no
+// process-wide state): the scene's kappa is replaced, and an override for an
+// effect the scene does not list is an error naming the option.
+TEST(ContactOptions, EffectOverridesReplaceSceneParameters) {
+  const Scene scene = LoadScene("drop", ContactLoadOptions());
+  SimulationOptions options = Options("backward_euler", "newton", 0.0);
+  options.effect_overrides["contact"] = {{"kappa", 1234.5}, {"dhat", 2e-3}};
+  Simulation sim(scene, options);
+  EXPECT_EQ(Filter(sim).kappa(), 1234.5);
+  EXPECT_EQ(Filter(sim).d_hat(), 2e-3);
+  EXPECT_FALSE(Filter(sim).adaptive_kappa());
+  options.effect_overrides["friction"] = {{"mu", 0.5}};
+  try {
+    Simulation bad(scene, options);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("options: effect_overrides.friction: ", 0), 0u)
+        << e.what();
   }
 }
 

@@ -8,6 +8,7 @@
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 #include "sim/simulation.h"
 
 namespace {
@@ -46,10 +47,16 @@ std::string BuildTether(ipstep::TermBuilder& builder, const nlohmann::json& para
   return "tether: " + std::to_string(count) + " terms";
 }
 
-const bool registered = [] {
-  ipstep::EffectRegistry::Global().Register("tether", "pull free nodes to the origin", BuildTether);
-  return true;
-}();
+// The program's own registry: the defaults plus the tether (the default
+// registry itself is immutable).
+const ipstep::EffectRegistry& Effects() {
+  static const ipstep::EffectRegistry* const effects = [] {
+    auto* registry = new ipstep::EffectRegistry(ipstep::MakeDefaultEffects());
+    registry->Register("tether", "pull free nodes to the origin", BuildTether);
+    return registry;
+  }();
+  return *effects;
+}
 
 ipstep::Scene TetheredParticle(int dimension) {
   ipstep::Scene s;
@@ -65,10 +72,10 @@ ipstep::Scene TetheredParticle(int dimension) {
 }
 
 TEST(CustomEnergy, RegisteredEnergyRunsWithEveryOptimizer) {
-  ASSERT_TRUE(registered);
   for (int dimension : {2, 3}) {
     for (const char* optimizer : {"newton", "dogleg", "lbfgs", "bfgs", "ncg", "gradient_descent"}) {
       ipstep::SimulationOptions options;
+      options.effects = &Effects();
       options.integrator.name = "backward_euler";
       options.optimizer.optimizer = ipstep::ParseOptimizer(optimizer);
       // Newton's first step is exact on this quadratic; the others need a tolerance
@@ -101,9 +108,10 @@ TEST(CustomEnergy, TheSceneOfDocsNewEnergyLoadsAndRuns) {
   "particle": {"position": [0.3, 0.0], "mass": 2.0}
 })";
   ipstep::SceneLoadOptions load;
-  load.extra_effects = ipstep::EffectRegistry::Global().UserNames();
+  load.extra_effects = Effects().UserNames();
   const ipstep::Scene scene = ipstep::ParseScene(std::string(text), "docs/new_energy.md", load);
   ipstep::SimulationOptions options;
+  options.effects = &Effects();
   options.time_step = 0.1;
   ipstep::Simulation sim(scene, options);
   EXPECT_NEAR(sim.Energies().total(), 0.5 * 8.0 * 0.09, 1e-15);
@@ -118,6 +126,7 @@ TEST(CustomEnergy, ItsParameterErrorsAreInputErrors) {
   ipstep::Scene scene = TetheredParticle(2);
   scene.effect_parameters["tether"] = {{"stiffness", -1.0}};
   ipstep::SimulationOptions options;
+  options.effects = &Effects();
   options.time_step = 0.1;
   EXPECT_THROW({ ipstep::Simulation sim(scene, options); }, ipstep::InputError);
 }

@@ -29,6 +29,7 @@
 #include "core/term_hessian.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 #include "sim/simulation.h"
 
 namespace ipstep {
@@ -779,7 +780,7 @@ TEST(GapCurvature, ContactFilterTermsCarryCurvature) {
     options.integrator.name = "backward_euler";
     options.optimizer.optimizer = Optimizer::kNewton;
     SceneLoadOptions load;
-    load.extra_effects = EffectRegistry::Global().UserNames();  // contact, friction
+    load.extra_effects = DefaultEffects().UserNames();  // contact, friction
     Simulation sim(LoadScene(scene, load), options);
     int counts[6] = {0, 0, 0, 0, 0, 0};
     auto all_seen = [&] {

@@ -10,6 +10,7 @@
 
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 #include "sim/simulation.h"
 #include "tests/test_scenes.h"
 
@@ -22,13 +23,13 @@ using testing::OscillatorScene;
 
 Scene LoadWithContact(const std::string& name) {
   SceneLoadOptions options;
-  options.extra_effects = EffectRegistry::Global().UserNames();
+  options.extra_effects = DefaultEffects().UserNames();
   return LoadScene(name, options);
 }
 
 Scene ParseWithContact(const json& scene) {
   SceneLoadOptions options;
-  options.extra_effects = EffectRegistry::Global().UserNames();
+  options.extra_effects = DefaultEffects().UserNames();
   return ParseScene(scene, "test.json", options);
 }
 

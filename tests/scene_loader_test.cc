@@ -1,5 +1,6 @@
 #include "problems/scene_loader.h"
 #include "energies/effect_registry.h"
+#include "sim/default_effects.h"
 
 #include <cmath>
 #include <cstdio>
@@ -99,7 +100,7 @@ TEST(BuiltinScenesTest, NamesAndTexts) {
                                    "hanging_square", "impact", "oscillator", "slope",
                                    "spring_pendulum", "squeeze", "two_squares"}));
   SceneLoadOptions options;
-  options.extra_effects = EffectRegistry::Global().UserNames();  // contact, friction
+  options.extra_effects = DefaultEffects().UserNames();  // contact, friction
   for (const std::string& name : BuiltinSceneNames()) {
     EXPECT_TRUE(IsBuiltinScene(name));
     EXPECT_FALSE(BuiltinSceneText(name).empty());

@@ -1,0 +1,15 @@
+// The default effect registry: gravity, springs and damping
+// (energies/builtin_effects.cc), contact and friction
+// (contact/contact_effects.h). Immutable; a program that adds effects copies
+// it (MakeDefaultEffects) and passes its own registry to the simulation and
+// the scene loader.
+#pragma once
+
+#include "energies/effect_registry.h"
+
+namespace ipstep {
+
+const EffectRegistry& DefaultEffects();
+EffectRegistry MakeDefaultEffects();
+
+}  // namespace ipstep
