@@ -13,6 +13,49 @@ AdaptiveKappa::AdaptiveKappa(double fixed, double node_stiffness, double mean_we
       adaptive_(!(fixed > 0.0)),
       kappa_(adaptive_ ? kappa_min_ : fixed) {}
 
+AdaptiveKappa AdaptiveKappa::ForMesh(const CollisionMesh& mesh, const std::vector<bool>& node_free,
+                                     const State& state, const StepContext& context, double fixed,
+                                     double d_hat) {
+  double mass = 0.0, weight = 0.0;
+  int count = 0;
+  for (size_t s = 0; s < mesh.nodes.size(); ++s) {
+    weight += mesh.weights[s];
+    if (!node_free[s]) continue;
+    mass += state.mass[mesh.nodes[s]];
+    ++count;
+  }
+  mass = count > 0 ? mass / count : 1.0;
+  weight = mesh.nodes.empty() ? 1.0 : weight / mesh.nodes.size();
+  const double h = context.time_step > 0.0 ? context.time_step : 1.0;
+  const double stiffness = context.inertia_weight > 0.0
+                               ? mass * context.inertia_weight / context.potential_weight
+                               : mass / (h * h);
+  return AdaptiveKappa(fixed, stiffness, weight, d_hat);
+}
+
+bool GradientWithout(const IncrementalPotential& potential,
+                     std::initializer_list<const char*> families, const double* x,
+                     Eigen::VectorXd* gradient) {
+  const long n = static_cast<long>(potential.dimension()) * potential.num_nodes();
+  *gradient = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd part(n);
+  bool ok = true;
+  for (TermKind kind : {TermKind::kInertia, TermKind::kPotential, TermKind::kDissipation}) {
+    double energy = 0.0;
+    ok &= potential.EvaluateUnweighted(
+        [kind, &families](const Term& t) {
+          if (t.kind != kind) return false;
+          for (const char* family : families) {
+            if (t.family == family) return false;
+          }
+          return true;
+        },
+        x, &energy, part.data());
+    if (ok) *gradient += TermWeight(kind, potential.context()) * part;
+  }
+  return ok;
+}
+
 void AdaptiveKappa::Update(double gap,
                            const std::function<void(Eigen::VectorXd*)>& barrier_gradient,
                            const std::function<bool(Eigen::VectorXd*)>& rest_gradient) {

@@ -12,9 +12,16 @@
 #pragma once
 
 #include <functional>
+#include <initializer_list>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include <Eigen/Core>
+
+#include "contact/collision_mesh.h"
+#include "core/incremental_potential.h"
+#include "core/state.h"
 
 namespace ipstep {
 
@@ -23,6 +30,11 @@ class AdaptiveKappa {
   // fixed > 0: kappa stays `fixed`. node_stiffness: m w_I / w_U (or m / h^2);
   // mean_weight: the mean contact weight.
   AdaptiveKappa(double fixed, double node_stiffness, double mean_weight, double d_hat);
+  // The scale from the mesh: the mean mass of its free nodes, their inertia
+  // weight (or h^2 without inertia), the mean contact weight.
+  static AdaptiveKappa ForMesh(const CollisionMesh& mesh, const std::vector<bool>& node_free,
+                               const State& state, const StepContext& context, double fixed,
+                               double d_hat);
 
   // At the start of a step, with the smallest gap at x_n (infinity if none).
   // barrier_gradient(g) fills g_B; rest_gradient(g) fills g_E and returns
@@ -49,5 +61,11 @@ class AdaptiveKappa {
   bool balanced_ = false;
   double previous_gap_ = std::numeric_limits<double>::infinity();
 };
+
+// The weighted gradient at x of every term of the potential outside
+// `families` (g_E); false if they cannot be evaluated.
+bool GradientWithout(const IncrementalPotential& potential,
+                     std::initializer_list<const char*> families, const double* x,
+                     Eigen::VectorXd* gradient);
 
 }  // namespace ipstep

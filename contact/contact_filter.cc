@@ -13,8 +13,6 @@ namespace ipstep {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Obstacles advance to this fraction of the way to their first impact.
-constexpr double kObstacleAdvanceFraction = 0.8;
 // Lagged closest points: re-lags per step, and the relative excess of the
 // lagged gap over the true one that triggers one.
 constexpr int kMaxLags = 3;
@@ -24,27 +22,6 @@ std::vector<bool> FreeNodes(const CollisionMesh& mesh, const State& state) {
   std::vector<bool> free;
   for (int node : mesh.nodes) free.push_back(state.is_free(node));
   return free;
-}
-
-// kappa_min's scale: a free contact node's inertia per unit weight in E / w_U.
-AdaptiveKappa MakeKappa(const CollisionMesh& mesh, const std::vector<bool>& node_free,
-                        const State& state, const StepContext& context,
-                        const ContactOptions& options) {
-  double mass = 0.0, weight = 0.0;
-  int count = 0;
-  for (size_t s = 0; s < mesh.nodes.size(); ++s) {
-    weight += mesh.weights[s];
-    if (!node_free[s]) continue;
-    mass += state.mass[mesh.nodes[s]];
-    ++count;
-  }
-  mass = count > 0 ? mass / count : 1.0;
-  weight = mesh.nodes.empty() ? 1.0 : weight / mesh.nodes.size();
-  const double h = context.time_step > 0.0 ? context.time_step : 1.0;
-  const double stiffness = context.inertia_weight > 0.0
-                               ? mass * context.inertia_weight / context.potential_weight
-                               : mass / (h * h);
-  return AdaptiveKappa(options.kappa, stiffness, weight, options.d_hat);
 }
 
 }  // namespace
@@ -62,9 +39,10 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
       options_(std::move(options)),
       node_free_(FreeNodes(mesh_, *state)),
       margin_(1e-8 * options_.d_hat),
-      kappa_(MakeKappa(mesh_, node_free_, *state, potential->context(), options_)),
+      kappa_(AdaptiveKappa::ForMesh(mesh_, node_free_, *state, potential->context(), options_.kappa,
+                                    options_.d_hat)),
+      time_(&options_.obstacles, state->time),
       accepted_(state->x) {
-  for (const Obstacle& o : options_.obstacles) has_moving_obstacles_ |= o.is_moving();
   PairSetContext c;
   c.dimension = dim_;
   c.num_coordinates = static_cast<int>(state->x.size());
@@ -73,13 +51,12 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
   c.node_free = &node_free_;
   c.d_hat = options_.d_hat;
   c.margin = margin_;
-  c.time = &tau_;
+  c.time = time_.pointer();
   c.kappa = kappa_.pointer();
   c.step = context_;
   c.barrier_family = kContactFamily;
   c.friction_family = kFrictionFamily;
   sets_ = MakePairSets(c, options_.self_contact, state->x.data());
-  t_n_ = t_next_ = tau_ = state_->time;
 }
 
 void ContactFilter::EnableFriction(const FrictionOptions& options) {
@@ -99,20 +76,9 @@ std::string ContactFilter::Summary() const {
       << " obstacles";
   if (options_.self_contact) out << ", self-contact on " << mesh_.edges.size() << " edges";
   out << ", d_hat " << options_.d_hat << ", kappa ";
-  if (kappa_.adaptive()) {
-    out << "adaptive from " << kappa_.min();
-  } else {
-    out << kappa_.value();
-  }
+  out << (kappa_.adaptive() ? "adaptive from " : "")
+      << (kappa_.adaptive() ? kappa_.min() : kappa_.value());
   return out.str();
-}
-
-std::vector<double> ContactFilter::ObstacleTravel() const {
-  std::vector<double> travel;
-  for (const Obstacle& o : options_.obstacles) {
-    travel.push_back(o.velocity.norm() * std::max(0.0, t_next_ - tau_));
-  }
-  return travel;
 }
 
 double ContactFilter::Sweep(const double* a, const double* b, double t_a, double t_b) const {
@@ -137,32 +103,24 @@ void ContactFilter::OnAccepted(const double* x) {
 }
 
 bool ContactFilter::IsStepValid(const double* x) const {
-  return Sweep(accepted_.data(), x, tau_, tau_) > 1.0;
+  return Sweep(accepted_.data(), x, time_.tau(), time_.tau()) > 1.0;
 }
 
 double ContactFilter::MaxStepSize(const double* from, const double* to) const {
-  double t = std::clamp(Sweep(from, to, tau_, tau_), 0.0, 1.0);
+  double t = std::clamp(Sweep(from, to, time_.tau(), time_.tau()), 0.0, 1.0);
   for (const auto& set : sets_) t = set->ShrinkToClear(from, to, t);
   return t;
 }
 
 bool ContactFilter::IsFeasible(const double* x) const {
-  if (tau_ < t_next_) return false;  // a moving obstacle did not reach its position
-  return FindPenetration(x, tau_).empty();
+  // A moving obstacle that did not reach its position leaves the step infeasible.
+  return time_.reached_end() && FindPenetration(x, time_.tau()).empty();
 }
 
-double ContactFilter::MinDistance(const double* x, double reach) const {
-  double best = kInfinity;
-  int count = 0;
-  for (const auto& set : sets_) set->Near(x, tau_, reach, &best, &count);
-  return best;
-}
-
-int ContactFilter::CountPairsWithin(const double* x, double reach) const {
-  double best = kInfinity;
-  int count = 0;
-  for (const auto& set : sets_) set->Near(x, tau_, reach, &best, &count);
-  return count;
+void ContactFilter::Near(const double* x, double reach, double* min_distance, int* count) const {
+  *min_distance = kInfinity;
+  *count = 0;
+  for (const auto& set : sets_) set->Near(x, time_.tau(), reach, min_distance, count);
 }
 
 std::vector<std::string> ContactFilter::DiagnosticNames() const {
@@ -172,7 +130,7 @@ std::vector<std::string> ContactFilter::DiagnosticNames() const {
 std::vector<double> ContactFilter::Diagnostics(const double* x) const {
   double best = kInfinity;
   int count = 0;
-  for (const auto& set : sets_) set->Near(x, tau_, options_.d_hat, &best, &count);
+  Near(x, options_.d_hat, &best, &count);
   return {std::isfinite(best) ? best : std::nan(""), static_cast<double>(count)};
 }
 
@@ -209,16 +167,7 @@ void ContactFilter::RebuildFrictionTerms() {
 }
 
 void ContactFilter::AdvanceObstacles(const double* x) {
-  if (!has_moving_obstacles_) {
-    tau_ = t_next_;
-    return;
-  }
-  const double first = Sweep(x, x, tau_, t_next_);
-  if (first > 1.0) {
-    tau_ = t_next_;
-  } else {
-    tau_ += kObstacleAdvanceFraction * first * (t_next_ - tau_);
-  }
+  time_.Advance([&](double t_a, double t_b) { return Sweep(x, x, t_a, t_b); });
 }
 
 void ContactFilter::UpdateKappa(const double* x_n) {
@@ -232,22 +181,12 @@ void ContactFilter::UpdateKappa(const double* x_n) {
   // g_B: gradient of sum_pairs w_U w_i B(d) (kappa = 1); g_E: of the rest of E.
   const auto barrier_gradient = [&](Eigen::VectorXd* g) {
     *g = Eigen::VectorXd::Zero(n);
-    for (const auto& set : sets_) set->AddBarrierGradient(x_n, tau_, context_->potential_weight, g);
+    for (const auto& set : sets_)
+      set->AddBarrierGradient(x_n, time_.tau(), context_->potential_weight, g);
     zero_fixed(g);
   };
   const auto rest_gradient = [&](Eigen::VectorXd* g) {
-    *g = Eigen::VectorXd::Zero(n);
-    Eigen::VectorXd gradient(n);
-    bool ok = true;
-    for (TermKind kind : {TermKind::kInertia, TermKind::kPotential, TermKind::kDissipation}) {
-      double energy = 0.0;
-      ok &= potential_->EvaluateUnweighted(
-          [kind](const Term& t) {
-            return t.kind == kind && t.family != kContactFamily && t.family != kFrictionFamily;
-          },
-          x_n, &energy, gradient.data());
-      if (ok) *g += TermWeight(kind, *context_) * gradient;
-    }
+    const bool ok = GradientWithout(*potential_, {kContactFamily, kFrictionFamily}, x_n, g);
     zero_fixed(g);
     return ok;
   };
@@ -255,13 +194,12 @@ void ContactFilter::UpdateKappa(const double* x_n) {
 }
 
 void ContactFilter::BeginStep(const double* x_n) {
-  t_n_ = state_->time;
-  t_next_ = t_n_ + context_->time_step;
-  tau_ = t_n_;
+  time_.BeginStep(state_->time, context_->time_step);
+  const double t_n = time_.t_n();
   // The barrier energy at x_n before and after this step's stiffness and pairs
   // (for the energy balance: PrescribedWork).
   double energy_before = 0.0;
-  const bool before_ok = BarrierEnergy(x_n, t_n_, &energy_before);
+  const bool before_ok = BarrierEnergy(x_n, t_n, &energy_before);
   OnAccepted(x_n);
   UpdateKappa(x_n);
 
@@ -285,10 +223,10 @@ void ContactFilter::BeginStep(const double* x_n) {
   // in the air falls onto an obstacle within one step), so every pair with an
   // obstacle is a candidate (terms out of reach are exactly zero).
   if (!(context_->inertia_weight > 0.0)) std::fill(reach.begin(), reach.end(), kInfinity);
-  const std::vector<double> travel = ObstacleTravel();
+  const std::vector<double> travel = time_.Travel();
   ExtendPairs(CandidateRegion{x_n, x_tilde.data(), &reach, max_reach, &travel});
 
-  LagFriction(x_n, t_n_);
+  LagFriction(x_n, t_n);
   friction_lags_ = 1;
   AdvanceObstacles(x_n);
   Lag(x_n);
@@ -299,43 +237,29 @@ void ContactFilter::BeginStep(const double* x_n) {
   RebuildFrictionTerms();
   double energy_after = 0.0;
   begin_energy_input_ =
-      before_ok && BarrierEnergy(x_n, t_n_, &energy_after) ? energy_after - energy_before : 0.0;
+      before_ok && BarrierEnergy(x_n, t_n, &energy_after) ? energy_after - energy_before : 0.0;
 }
 
 bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
-  const double saved_tau = tau_;
-  tau_ = t;
+  double* tau = time_.pointer();
+  const double saved_tau = *tau;
+  *tau = t;
   const bool ok = potential_->EvaluateUnweighted(
       [](const Term& term) { return term.family == kContactFamily; }, x, energy, nullptr);
-  tau_ = saved_tau;
+  *tau = saved_tau;
   return ok;
 }
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {
-  if (!has_moving_obstacles_ || !(t_next_ > t_n_)) return begin_energy_input_;
-  const double h = t_next_ - t_n_, delta = 1e-6 * h;
-  // dU_b/dt at fixed positions by central differences in the obstacle time.
-  const auto rate = [&](const double* x, double t, double* value) {
-    double up = 0.0, down = 0.0;
-    if (!BarrierEnergy(x, t + delta, &up) || !BarrierEnergy(x, t - delta, &down)) return false;
-    *value = (up - down) / (2.0 * delta);
-    return true;
-  };
-  double at_start = 0.0, at_end = 0.0;
-  const bool start_ok = rate(x_start, t_n_, &at_start);
-  const bool end_ok = rate(x_end, t_next_, &at_end);
-  double work = 0.0;
-  if (start_ok && end_ok) {
-    work = 0.5 * h * (at_start + at_end);
-  } else if (start_ok || end_ok) {
-    work = h * (start_ok ? at_start : at_end);
-  }
-  return begin_energy_input_ + work;
+  return begin_energy_input_ +
+         time_.Work(x_start, x_end, [this](const double* x, double t, double* energy) {
+           return BarrierEnergy(x, t, energy);
+         });
 }
 
 bool ContactFilter::RefreshTerms(const double* x) {
   bool changed = false;
-  if (tau_ < t_next_) {
+  if (!time_.reached_end()) {
     AdvanceObstacles(x);
     changed = true;
   }
@@ -349,7 +273,7 @@ bool ContactFilter::RefreshTerms(const double* x) {
   }
   if (missing || changed) {
     const std::vector<double> reach(mesh_.nodes.size(), options_.d_hat);
-    const std::vector<double> travel = ObstacleTravel();
+    const std::vector<double> travel = time_.Travel();
     if (ExtendPairs(CandidateRegion{x, x, &reach, options_.d_hat, &travel})) {
       RebuildBarrierTerms();
       changed = true;
@@ -369,7 +293,7 @@ bool ContactFilter::RefreshTerms(const double* x) {
     }
   }
   if (!changed && friction_enabled_ && friction_lags_ < friction_.iterations) {
-    LagFriction(x, tau_);
+    LagFriction(x, time_.tau());
     RebuildFrictionTerms();
     ++friction_lags_;
     changed = true;

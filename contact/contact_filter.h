@@ -41,6 +41,7 @@
 #include "contact/adaptive_kappa.h"
 #include "contact/collision_mesh.h"
 #include "contact/contact_options.h"
+#include "contact/obstacle_time.h"
 #include "contact/pair_set.h"
 #include "core/incremental_potential.h"
 #include "core/state.h"
@@ -84,16 +85,27 @@ class ContactFilter : public StepFilter {
   // U_b (the barrier terms' energy) at positions x and obstacle time t.
   bool BarrierEnergy(const double* x, double t, double* energy);
 
-  // Smallest gap over combinations closer than `reach` at the current obstacle
-  // time (infinity if none), and their number.
-  double MinDistance(const double* x, double reach) const;
-  int CountPairsWithin(const double* x, double reach) const;
+  // Over every kind's combinations closer than `reach` at the current
+  // obstacle time: the smallest gap (infinity if none) and their number.
+  void Near(const double* x, double reach, double* min_distance, int* count) const;
+  double MinDistance(const double* x, double reach) const {
+    double best;
+    int count;
+    Near(x, reach, &best, &count);
+    return best;
+  }
+  int CountPairsWithin(const double* x, double reach) const {
+    double best;
+    int count;
+    Near(x, reach, &best, &count);
+    return count;
+  }
 
   double kappa() const { return kappa_.value(); }
   double kappa_min() const { return kappa_.min(); }
   bool adaptive_kappa() const { return kappa_.adaptive(); }
   double d_hat() const { return options_.d_hat; }
-  double obstacle_time() const { return tau_; }
+  double obstacle_time() const { return time_.tau(); }
   const CollisionMesh& mesh() const { return mesh_; }
   const std::vector<Obstacle>& obstacles() const { return options_.obstacles; }
   const std::vector<std::unique_ptr<PairSet>>& pair_sets() const { return sets_; }
@@ -105,12 +117,11 @@ class ContactFilter : public StepFilter {
   // Smallest TimeOfImpact of the kinds (PairSet::kNoImpact if none).
   double Sweep(const double* a, const double* b, double t_a, double t_b) const;
   bool ExtendPairs(const CandidateRegion& region);
-  std::vector<double> ObstacleTravel() const;
   void RebuildBarrierTerms();
   double Lag(const double* x);
   void LagFriction(const double* x, double t);
   void RebuildFrictionTerms();
-  // Moves the obstacle time towards t_next as far as x allows.
+  // Moves the obstacle time towards t_{n+1} as far as x allows.
   void AdvanceObstacles(const double* x);
   void UpdateKappa(const double* x_n);
 
@@ -122,12 +133,8 @@ class ContactFilter : public StepFilter {
   ContactOptions options_;
   std::vector<bool> node_free_;  // per entry of mesh_.nodes
   double margin_;                // smallest admissible gap
-  bool has_moving_obstacles_ = false;
   AdaptiveKappa kappa_;
-
-  double t_n_ = 0.0;
-  double t_next_ = 0.0;
-  double tau_ = 0.0;
+  ObstacleTime time_;
   double begin_energy_input_ = 0.0;  // PrescribedWork
   Eigen::VectorXd accepted_;
   int lags_ = 0;  // closest-point re-lags this step

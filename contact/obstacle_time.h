@@ -1,0 +1,57 @@
+// The time at which the contact filter sees the obstacles within a step.
+// Moving obstacles are advanced in stages: each solve uses them at a time tau,
+// and Advance moves tau towards t_{n+1} as far as continuous collision
+// detection against the current solution allows (0.8 of the way to the first
+// impact). The step is feasible only once tau = t_{n+1}. Also the moving
+// obstacles' work on the body over a step (Work).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "contact/obstacle.h"
+
+namespace ipstep {
+
+class ObstacleTime {
+ public:
+  // `obstacles` must outlive this.
+  ObstacleTime(const std::vector<Obstacle>* obstacles, double t0);
+
+  // A step from t_n of length h: tau = t_n.
+  void BeginStep(double t_n, double h);
+  // first_impact(t_a, t_b): the first fraction of the obstacles' motion from
+  // t_a to t_b at which they reach the body (> 1: none).
+  void Advance(const std::function<double(double, double)>& first_impact);
+  bool reached_end() const { return !(tau_ < t_next_); }
+
+  double tau() const { return tau_; }
+  // Read by the terms at every evaluation; the filter may set it to evaluate
+  // at another time.
+  double* pointer() { return &tau_; }
+  double t_n() const { return t_n_; }
+  double t_next() const { return t_next_; }
+  bool has_moving_obstacles() const { return has_moving_; }
+  // Per obstacle: how far it still travels in the step [m].
+  std::vector<double> Travel() const;
+
+  // The moving obstacles' work on the body over the step: the integral of
+  // dU_b/dt (the barrier energy's rate at fixed positions, central differences
+  // in the obstacle time) by the trapezoidal rule between (x_start, t_n) and
+  // (x_end, t_{n+1}) (one end if the other cannot be evaluated; 0 without
+  // moving obstacles). barrier_energy(x, t, &U) returns false when U cannot
+  // be evaluated.
+  double Work(const double* x_start, const double* x_end,
+              const std::function<bool(const double*, double, double*)>& barrier_energy) const;
+
+  static constexpr double kAdvanceFraction = 0.8;
+
+ private:
+  const std::vector<Obstacle>* obstacles_;
+  bool has_moving_ = false;
+  double t_n_;
+  double t_next_;
+  double tau_;
+};
+
+}  // namespace ipstep
