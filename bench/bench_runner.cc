@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "apps/divergence.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/parse_number.h"
@@ -196,12 +197,13 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
       ++out.failed_steps;
       if (out.status == "ok") out.status = "failed steps (first: " + report.status + ")";
     }
-    if (!state.x.allFinite() || !state.v.allFinite()) {
-      out.status = "diverged at step " + std::to_string(step + 1);
-      break;
-    }
     const double drift = std::abs(report.energies.total() - out.initial_energy) / scale;
     out.max_energy_drift = std::max(out.max_energy_drift, std::isfinite(drift) ? drift : 1e300);
+    if (RunDiverged(out.initial_energy, report.energies.total(),
+                    state.x.allFinite() && state.v.allFinite())) {
+      out.status = "diverged at step " + std::to_string(step + 1);  // apps/divergence.h
+      break;
+    }
     if (config.max_run_seconds > 0.0 && Since(loop_start) > config.max_run_seconds &&
         step + 1 < config.steps) {
       out.status = "timeout after " + std::to_string(step + 1) + " steps";
@@ -290,6 +292,7 @@ std::string CsvRow(const RunRow& row) {
       row.wall.empty() ? std::nan("") : *std::min_element(row.wall.begin(), row.wall.end());
   const int steps = std::max(1, t.steps_done);
   const bool ran = t.steps_done > 0;
+  const bool diverged = t.status.rfind("diverged", 0) == 0;  // its drift is meaningless
   const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
   out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
@@ -301,9 +304,10 @@ std::string CsvRow(const RunRow& row) {
       << Number(static_cast<double>(t.iterations) / steps) << ',' << t.max_step_iterations << ','
       << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
       << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
-      << Number(row.position_error) << ',' << Number(ran ? t.max_energy_drift : std::nan("")) << ','
-      << Quote(row.reference) << ',' << Number(row.reference_dt) << ','
-      << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
+      << Number(row.position_error) << ','
+      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ',' << Quote(row.reference)
+      << ',' << Number(row.reference_dt) << ',' << Number(row.reference_error) << ','
+      << Number(pn ? t.phases.hessian : std::nan("")) << ','
       << Number(pn ? t.phases.factorize : std::nan("")) << ','
       << Number(pn ? t.phases.line_search : std::nan("")) << ','
       << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard;

@@ -60,7 +60,9 @@ struct Trajectory {
   long evaluations = 0;
   double loop_seconds = 0.0;   // Step() loop
   double setup_seconds = 0.0;  // scene loading + Simulation construction
-  std::string status = "ok";   // ok | failed steps | diverged | timeout | error: ...
+  // ok | failed steps (first: ...) | diverged at step N (apps/divergence.h: the
+  // run stops there) | timeout after N steps | error: ...
+  std::string status = "ok";
   int nodes = 0;
   int free_dofs = 0;
   int dimension = 2;
