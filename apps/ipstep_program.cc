@@ -1,4 +1,5 @@
-// ipstep: runs one scene with one integrator and one optimiser.
+// RunIpstep (apps/programs.h), the ipstep program: runs one scene with one
+// integrator and one optimiser.
 //   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
 // Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed (also
 // as substeps, --max_substeps) with --on_failure=stop.
@@ -13,6 +14,7 @@
 #include "apps/command_line.h"
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
+#include "apps/programs.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
@@ -37,7 +39,7 @@ DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer tha
 namespace ipstep {
 namespace {
 
-int Run() {
+int Run(const EffectRegistry& registry) {
   SimulationOptions options = SimulationOptionsFromFlags();
   if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
     throw InputError("flag", "--on_failure",
@@ -46,7 +48,7 @@ int Run() {
   options.max_substeps =
       CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps; 1 is no retry");
   CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
-  const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags());
+  const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
   CheckContactFlagsApply(scene);
   Simulation sim(scene, options);
 
@@ -135,11 +137,14 @@ int Run() {
 }
 
 }  // namespace
-}  // namespace ipstep
 
-int main(int argc, char** argv) {
-  return ipstep::ProgramMain(
-      argc, argv, "ipstep",
+int RunIpstep(int argc, char** argv, const EffectRegistry& registry) {
+  return ProgramMain(
+      argc, argv, ProgramName(argc, argv, "ipstep").c_str(),
       "ipstep --scene=NAME|FILE --integrator=... --optimizer=... [--dt --steps --stats ...]",
-      ipstep::Run);
+      [&registry] { return Run(registry); });
 }
+
+int RunIpstep(int argc, char** argv) { return RunIpstep(argc, argv, EffectRegistry::Global()); }
+
+}  // namespace ipstep

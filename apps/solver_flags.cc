@@ -1,6 +1,7 @@
 #include "apps/solver_flags.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "apps/command_line.h"
 #include "core/input_error.h"
@@ -8,8 +9,7 @@
 #include "energies/effect_registry.h"
 
 DEFINE_string(scene, "oscillator",
-              "Built-in scene name (oscillator, spring_pendulum, cloth, fpu) or path to a JSON "
-              "scene file");
+              "Built-in scene name (listed in --help) or path to a JSON scene file");
 DEFINE_string(integrator, "backward_euler",
               "backward_euler | newmark | quasi_static | symplectic_euler");
 DEFINE_string(optimizer, "newton",
@@ -138,13 +138,18 @@ SimulationOptions SimulationOptionsFromFlags() {
   return o;
 }
 
-SceneLoadOptions SceneLoadOptionsFromFlags() {
+SceneLoadOptions SceneLoadOptionsFromFlags(const EffectRegistry& registry) {
+  // The simulation builds effects from the global registry (sim/simulation.cc)
+  // until it takes one: another registry would load scenes it cannot build.
+  if (&registry != &EffectRegistry::Global()) {
+    throw std::logic_error("the programs take EffectRegistry::Global() only, for now");
+  }
   SceneLoadOptions o;
   if (!FlagIsDefault("grid_size")) {
     o.grid_size =
         CheckFlagRange("grid_size", FLAGS_grid_size, 2, limits::kMaxGridSize, "the scene's size");
   }
-  o.extra_effects = EffectRegistry::Global().UserNames();
+  o.extra_effects = registry.UserNames();
   return o;
 }
 

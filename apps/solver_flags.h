@@ -4,6 +4,7 @@
 
 #include <gflags/gflags.h>
 
+#include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
 #include "sim/simulation.h"
 
@@ -19,6 +20,8 @@ namespace ipstep {
 
 // Reads and validates the flags. Throws InputError naming the flag.
 SimulationOptions SimulationOptionsFromFlags();
-SceneLoadOptions SceneLoadOptionsFromFlags();
+// `registry`: its user effects are accepted in scenes (SceneLoadOptions::extra_effects).
+SceneLoadOptions SceneLoadOptionsFromFlags(
+    const EffectRegistry& registry = EffectRegistry::Global());
 
 }  // namespace ipstep

@@ -2,11 +2,13 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS ipstep ipstep_scene EXPORT ipstepTargets
+# ipstep::ipstep (the library) and ipstep::flags (the programs as library
+# calls, apps/programs.h, with their flags).
+install(TARGETS ipstep ipstep_scene ipstep_flags EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS ipstep_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(dir contact core energies integrators problems sim solver io)
+install(TARGETS ipstep_app ipstep_compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+foreach(dir apps contact core energies integrators problems sim solver io)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION include/ipstep/${dir}
     FILES_MATCHING PATTERN "*.h")
 endforeach()
