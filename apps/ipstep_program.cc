@@ -18,6 +18,7 @@
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "io/frame_writer.h"
 #include "io/positions_writer.h"
 #include "io/stats_writer.h"
 #include "problems/scene_loader.h"
@@ -32,7 +33,9 @@ DEFINE_int32(max_substeps, 16,
 DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
-DEFINE_string(frames, "", "Directory for legacy-VTK frames (ParaView)");
+DEFINE_string(frames, "",
+              "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body, "
+              "obstacles) at its simulated time; tools/animate.py DIR OUT.gif draws it");
 DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
 DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer than 3 s");
 
@@ -54,7 +57,7 @@ int Run(const EffectRegistry& registry) {
 
   std::unique_ptr<StatsWriter> stats;
   std::unique_ptr<IterationLogWriter> iterations;
-  std::unique_ptr<VtkFrameWriter> frames;
+  std::unique_ptr<FrameWriter> frames;
   if (!FLAGS_stats.empty()) {
     stats = std::make_unique<StatsWriter>(FLAGS_stats, "--stats", sim.DiagnosticNames());
   }
@@ -63,8 +66,8 @@ int Run(const EffectRegistry& registry) {
     sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });
   }
   if (!FLAGS_frames.empty()) {
-    frames = std::make_unique<VtkFrameWriter>(FLAGS_frames, sim.scene());
-    frames->Write(sim.state(), 0);
+    frames = std::make_unique<FrameWriter>(FLAGS_frames, sim);
+    frames->Write(0);
   }
 
   std::printf("scene %s (%s): %d nodes, %d free, dimension %d\n", scene.name.c_str(),
@@ -93,7 +96,7 @@ int Run(const EffectRegistry& registry) {
     total_iterations += r.iterations;
     solve_seconds += r.wall_seconds;
     if (stats) stats->Write(r);
-    if (frames && step % FLAGS_frame_every == 0) frames->Write(sim.state(), step);
+    if (frames && step % FLAGS_frame_every == 0) frames->Write(step);
     VLOG(1) << "step " << step << " t=" << r.time << " iterations=" << r.iterations
             << " residual=" << r.residual << " E=" << r.energies.total() << " " << r.status;
     if (r.converged && r.substeps > 1) {

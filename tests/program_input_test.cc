@@ -432,9 +432,10 @@ TEST_F(ProgramInput, ValidRunWritesItsOutputs) {
   std::string first;
   std::getline(p, first);
   EXPECT_EQ(first, "node,x,y");
-  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00000.vtk"));
-  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00004.vtk"));
-  EXPECT_FALSE(fs::exists(fs::path(frames) / "frame_00003.vtk"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "run.pvd"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00000.vtu"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00004.vtu"));
+  EXPECT_FALSE(fs::exists(fs::path(frames) / "frame_00003.vtu"));
   std::ifstream l(log);
   std::getline(l, header);
   EXPECT_EQ(header, "step,iteration,energy,gradient_norm,step_size,seconds,residual");
