@@ -1,0 +1,10 @@
+// The ipstep program with the tether: every flag (--help), CSV and frame
+// output of ipstep, for scenes that use "tether".
+//   tether_ipstep --scene=tethered_square.json --integrator=newmark --stats=stats.csv
+#include "apps/programs.h"
+#include "tether.h"
+
+int main(int argc, char** argv) {
+  tether::RegisterTether(ipstep::EffectRegistry::Global());
+  return ipstep::RunIpstep(argc, argv);
+}
