@@ -8,6 +8,12 @@ install(TARGETS ipstep ipstep_scene ipstep_flags EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS ipstep_app ipstep_compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET ipstep_bench_lib)  # ipstep::bench (bench/bench_program.h: RunBench)
+  install(TARGETS ipstep_bench_lib EXPORT ipstepTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(TARGETS ipstep_bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(FILES ${PROJECT_SOURCE_DIR}/bench/bench_program.h ${PROJECT_SOURCE_DIR}/bench/bench_runner.h
+          DESTINATION include/ipstep/bench)
+endif()
 foreach(dir apps contact core energies integrators problems sim solver io)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION include/ipstep/${dir}
     FILES_MATCHING PATTERN "*.h")

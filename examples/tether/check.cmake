@@ -20,6 +20,13 @@ if(NOT EXISTS ${WORK}/stats.csv OR NOT EXISTS ${WORK}/frames/run.pvd)
 endif()
 run(0 "| newmark | newton |" ${BUILD}/tether_compare ${scene} --steps=10
     --integrators=newmark --optimizers=newton,lbfgs)
+run(0 "[0] " ${BUILD}/tether_bench --scenes=${SOURCE}/tethered_square.json --steps=4
+    --integrators=newmark --optimizers=newton --repeats=1 --warmup=0 --output=${WORK}/sweep.csv)
+file(STRINGS ${WORK}/sweep.csv rows)
+list(LENGTH rows count)
+if(NOT count EQUAL 2)
+  message(FATAL_ERROR "tether_bench: expected a header and one row, got ${count} lines")
+endif()
 run(0 "Optimiser:" ${BUILD}/tether_ipstep --help)
 file(READ ${SOURCE}/tethered_square.json text)
 string(REPLACE "\"stiffness\": 20," "\"stiffness\": -1," text "${text}")

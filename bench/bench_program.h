@@ -1,0 +1,17 @@
+// ipstep_bench as a library call (target ipstep::bench), like RunIpstep and
+// RunCompare (apps/programs.h): a project that registers its own effects and
+// calls RunBench from main() gets the whole sweep program (docs/benchmarks.md)
+// for its scenes. Its flags --integrators and --optimizers share their names
+// with ipstep_compare's: call RunBench and RunCompare from different programs.
+#pragma once
+
+#include "energies/effect_registry.h"
+
+namespace ipstep {
+
+int RunBench(int argc, char** argv);
+// `registry` must be EffectRegistry::Global() until the simulation takes a
+// registry (apps/programs.h).
+int RunBench(int argc, char** argv, const EffectRegistry& registry);
+
+}  // namespace ipstep
