@@ -22,23 +22,28 @@ struct GroupEntry {
 };
 
 const std::vector<GroupEntry>& Groups() {
+  // ipstep's flags, then ipstep_compare's and ipstep_bench's lists.
   static const auto* const groups = new std::vector<GroupEntry>{
-      {"scene", "Scene", {"scene", "grid_size", "dt", "steps"}},
+      {"scene",
+       "Scene",
+       {"scene", "grid_size", "dt", "steps", "scenes", "grid_sizes", "dts", "dt_factors", "t_end"}},
       {"integrator",
        "Integrator and failed steps",
        {"integrator", "newmark_beta", "newmark_gamma", "energy_tolerance", "max_substeps",
-        "on_failure"}},
+        "on_failure", "integrators"}},
       {"optimiser",
        "Optimiser",
        {"optimizer", "tolerance", "max_iterations", "time_limit", "num_threads", "linear_solver",
         "sparse_library", "trust_region_radius", "backtrack_rejected_steps", "line_search",
-        "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates", "precise_energy"}},
+        "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates", "precise_energy", "optimizers",
+        "tolerances", "reference_optimizer", "reference_tolerance"}},
       {"contact",
        "Contact (scenes with the contact or friction effect)",
        {"contact_kappa", "contact_dhat", "friction_mu", "friction_iterations"}},
       {"output",
        "Output",
-       {"stats", "iterations_log", "positions", "frames", "frame_every", "progress"}},
+       {"stats", "iterations_log", "positions", "frames", "frame_every", "progress", "output",
+        "shard", "merge", "dry_run"}},
   };
   return *groups;
 }

@@ -47,7 +47,12 @@ std::string ProgramName(int argc, char** argv, const char* fallback) {
 
 int ProgramMain(int argc, char** argv, const char* program, const char* usage,
                 const std::function<int()>& run) {
-  gflags::SetUsageMessage(usage);
+  // gflags aborts on a second usage message and glog on a second
+  // initialisation (a program that initialised glog itself, or called a Run*
+  // entry point before).
+  static bool usage_set = false;
+  if (!usage_set) gflags::SetUsageMessage(usage);
+  usage_set = true;
   FLAGS_logtostderr = true;
   KeepLargeAllocations();  // solver/allocator_tuning.h
   try {
@@ -62,7 +67,9 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
     gflags::ParseCommandLineNonHelpFlags(&count, &parsed, true);
     if (HandleHelpFlags(program)) return 0;
     QuietLogging();
-    google::InitGoogleLogging(argc > 0 ? argv[0] : program);
+    if (!google::IsGoogleLoggingInitialized()) {
+      google::InitGoogleLogging(argc > 0 ? argv[0] : program);
+    }
     return run();
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: error: %s%s\n", program, e.what(), OriginNote(e.what()).c_str());

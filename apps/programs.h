@@ -11,6 +11,8 @@
 // naming the flag or file and exit code 2 for bad input, --help, --version),
 // runs and returns the exit code (0 success, 2 bad input, 3 a step failed with
 // --on_failure=stop). Link ipstep::flags (installed with the library).
+// Call one of them once per process: the flags are process-wide (gflags), so a
+// second call starts from the values the first one parsed.
 #pragma once
 
 #include "energies/effect_registry.h"

@@ -292,7 +292,8 @@ std::string CsvRow(const RunRow& row) {
       row.wall.empty() ? std::nan("") : *std::min_element(row.wall.begin(), row.wall.end());
   const int steps = std::max(1, t.steps_done);
   const bool ran = t.steps_done > 0;
-  const bool diverged = t.status.rfind("diverged", 0) == 0;  // its drift is meaningless
+  // A diverged run's drift is meaningless, and so is a relative drift from E_0 = 0.
+  const bool diverged = t.status.rfind("diverged", 0) == 0;
   const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
   out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
@@ -305,9 +306,9 @@ std::string CsvRow(const RunRow& row) {
       << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
       << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
       << Number(row.position_error) << ','
-      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ',' << Quote(row.reference)
-      << ',' << Number(row.reference_dt) << ',' << Number(row.reference_error) << ','
-      << Number(pn ? t.phases.hessian : std::nan("")) << ','
+      << Number(ran && !diverged && t.initial_energy != 0.0 ? t.max_energy_drift : std::nan(""))
+      << ',' << Quote(row.reference) << ',' << Number(row.reference_dt) << ','
+      << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
       << Number(pn ? t.phases.factorize : std::nan("")) << ','
       << Number(pn ? t.phases.line_search : std::nan("")) << ','
       << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard;

@@ -51,7 +51,7 @@ struct Trajectory {
   Eigen::VectorXd final_x;
   std::vector<int> free_nodes;
   double initial_energy = 0.0;
-  double max_energy_drift = 0.0;  // max_n |E_n - E_0| / |E_0|
+  double max_energy_drift = 0.0;  // max_n |E_n - E_0| / |E_0| (the CSV leaves it out for E_0 = 0)
   int steps_done = 0;
   int failed_steps = 0;
   double worst_residual = 0.0;  // largest stopping measure at the end of a step [m/s]
