@@ -19,7 +19,8 @@ execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/buil
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "configuring ${SOURCE_DIR} failed: ${rc}")
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK_DIR}/build" RESULT_VARIABLE rc)
+execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK_DIR}/build" --parallel 2
+                RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building ${SOURCE_DIR} failed: ${rc}")
 endif()
