@@ -47,6 +47,7 @@ FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
   }
   for (const auto& filter : sim.potential().step_filters()) {
     if (const auto* contact = dynamic_cast<const ContactManager*>(filter.get())) {
+      has_contact_ = true;
       for (const Obstacle& o : contact->obstacles()) {
         obstacles_.push_back(o);
         obstacles_move_ = obstacles_move_ || o.is_moving();
@@ -74,6 +75,21 @@ void FrameWriter::Write(int frame) {
     velocity.push_back(NodePosition(s.v, dim, i));
   }
   body.point_vectors.push_back({"velocity", velocity});
+  if (has_contact_) {
+    // -grad of the barrier energy (the contact terms, unweighted) at x; zero
+    // where it cannot be evaluated.
+    Eigen::VectorXd gradient = Eigen::VectorXd::Zero(s.x.size());
+    double energy = 0.0;
+    const bool ok = sim_.potential().EvaluateUnweighted(
+        [](const Term& term) { return term.family == ContactManager::kContactFamily; }, s.x.data(),
+        &energy, gradient.data());
+    std::vector<Eigen::Vector3d> force;
+    for (int i = 0; i < s.num_nodes(); ++i) {
+      force.push_back(ok ? Eigen::Vector3d(-NodePosition(gradient, dim, i))
+                         : Eigen::Vector3d::Zero());
+    }
+    body.point_vectors.push_back({"contact_force", force});
+  }
   std::vector<int> kind;  // 0 spring, 1 triangle, 2 particle
   for (const Spring& spring : sim_.scene().springs) {
     body.AddCell(VtkCell::kLine, {spring.i, spring.j});

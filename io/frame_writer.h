@@ -2,7 +2,9 @@
 // frame at its simulated time (the `timestep`, so ParaView's time slider shows
 // seconds), the body DIR/frame_NNNNN.vtu (points, springs as lines, the
 // triangles filling the spring network as triangles (io/surface_triangles.h),
-// particles as vertices; point data "velocity") as part 0 and, for scenes with
+// particles as vertices; point data "velocity" and, with contact,
+// "contact_force": minus the gradient of the barrier energy, the force the
+// contact terms exert on each node [N]) as part 0 and, for scenes with
 // contact obstacles, the obstacles (io/obstacle_mesh.h) as part 1:
 // DIR/obstacles.vtu when none moves, else DIR/obstacles_NNNNN.vtu per frame.
 // tools/animate.py draws such a directory.
@@ -36,6 +38,7 @@ class FrameWriter {
   std::vector<std::array<int, 3>> triangles_;
   std::vector<int> particles_;  // nodes without springs
   std::vector<Obstacle> obstacles_;
+  bool has_contact_ = false;  // the scene has contact: point data "contact_force"
   bool obstacles_move_ = false;
   bool static_obstacles_written_ = false;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // of the initial positions

@@ -70,6 +70,17 @@ ipstep::Scene Load(const std::string& name) {
   return ipstep::LoadScene(name, options);
 }
 
+// The numbers of the DataArray named `name` of a .vtu; empty if there is none.
+std::vector<double> NamedArray(const std::string& vtu, const std::string& name) {
+  const size_t at = vtu.find("Name=\"" + name + "\"");
+  if (at == std::string::npos) return {};
+  const size_t start = vtu.find('>', at) + 1;
+  std::stringstream in(vtu.substr(start, vtu.find("</DataArray>", start) - start));
+  std::vector<double> values;
+  for (double v; in >> v;) values.push_back(v);
+  return values;
+}
+
 class Frames : public ipstep::testing::ProgramTest {
  protected:
   // Runs `scene` for `steps` steps, a frame every step; returns the times.
@@ -121,13 +132,44 @@ TEST_F(Frames, SeriesListsEveryFrameAtItsSimulatedTime) {
   EXPECT_DOUBLE_EQ(xyz[4], -1.0);
 }
 
+// With contact, each node carries the barrier's force on it: upwards on the
+// nodes near the ground once the square has landed, zero out of the barrier's
+// reach (d_hat = 0.01 m); scenes without contact carry none.
+TEST_F(Frames, ContactForcesPushNodesOutOfTheGround) {
+  ipstep::Scene scene;
+  const std::vector<double> times = Run("drop", 45, &scene);  // lands at t = 0.32 s
+  const std::string last = ReadFile(dir_ / "frames" / "frame_00045.vtu");
+  const std::vector<double> xyz = PointCoordinates(last);
+  const std::vector<double> force = NamedArray(last, "contact_force");
+  ASSERT_EQ(force.size(), 3u * scene.num_nodes());
+  double upwards = 0.0;
+  int pushed = 0;
+  for (int i = 0; i < scene.num_nodes(); ++i) {
+    EXPECT_GE(force[3 * i + 1], 0.0) << "node " << i;
+    if (xyz[3 * i + 1] > -1.0 + 0.011) {
+      EXPECT_EQ(force[3 * i + 1], 0.0) << "node " << i << " at y = " << xyz[3 * i + 1];
+    }
+    if (force[3 * i + 1] > 0.0) ++pushed;
+    upwards += force[3 * i + 1];
+  }
+  EXPECT_GE(pushed, 1);
+  EXPECT_GT(upwards, 0.0);
+  ipstep::SimulationOptions options;
+  ipstep::Simulation oscillator(Load("oscillator"), options);
+  ipstep::FrameWriter frames((dir_ / "oscillator").string(), oscillator);
+  frames.Write(0);
+  const std::string vtu = ReadFile(dir_ / "oscillator" / "frame_00000.vtu");
+  EXPECT_FALSE(NamedArray(vtu, "velocity").empty());
+  EXPECT_TRUE(NamedArray(vtu, "contact_force").empty());
+}
+
 TEST_F(Frames, MovingObstaclesAreDrawnWhereTheyAre) {
   const std::vector<double> times = Run("two_squares", 3, nullptr);
   const auto datasets = Elements(ReadFile(dir_ / "frames" / "run.pvd"), "DataSet");
   ASSERT_EQ(datasets.size(), 2 * times.size());
   for (size_t f = 0; f < times.size(); ++f) {
     const auto& obstacles = datasets[2 * f + 1];
-    char name[32];
+    char name[48];
     std::snprintf(name, sizeof(name), "obstacles_%05zu.vtu", f);
     ASSERT_EQ(obstacles.at("file"), name);
     // Two segments: the ground at y = -0.505 and the ceiling at 1.6 - 0.5 t.
