@@ -29,15 +29,14 @@ std::string Numbered(const char* stem, int frame) {
 
 FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
                          const std::string& flag)
-    : directory_(directory),
-      flag_(flag),
-      sim_(sim),
-      series_((std::filesystem::path(directory) / "run.pvd").string(), flag) {
+    : directory_(directory), flag_(flag), sim_(sim) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
     throw InputError("flag", flag, "cannot create directory '" + directory + "'");
   }
+  series_ =
+      std::make_unique<PvdSeries>((std::filesystem::path(directory) / "run.pvd").string(), flag);
   const Scene& scene = sim.scene();
   triangles_ = SurfaceTriangles(scene);
   std::vector<bool> has_spring(scene.num_nodes(), false);
@@ -106,7 +105,7 @@ void FrameWriter::Write(int frame) {
   body.cell_integers.push_back({"kind", kind});
   const std::string body_file = Numbered("frame", frame);
   WriteVtu(body, (std::filesystem::path(directory_) / body_file).string(), flag_);
-  series_.Add(s.time, 0, body_file);
+  series_->Add(s.time, 0, body_file);
   if (obstacles_.empty()) return;
   std::string obstacle_file = "obstacles.vtu";
   if (obstacles_move_) obstacle_file = Numbered("obstacles", frame);
@@ -115,7 +114,7 @@ void FrameWriter::Write(int frame) {
              (std::filesystem::path(directory_) / obstacle_file).string(), flag_);
     static_obstacles_written_ = true;
   }
-  series_.Add(s.time, 1, obstacle_file);
+  series_->Add(s.time, 1, obstacle_file);
 }
 
 }  // namespace ipstep

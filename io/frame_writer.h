@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,7 @@ class FrameWriter {
   std::string directory_;
   std::string flag_;
   const Simulation& sim_;
-  PvdSeries series_;
+  std::unique_ptr<PvdSeries> series_;  // DIR/run.pvd
   std::vector<std::array<int, 3>> triangles_;
   std::vector<int> particles_;  // nodes without springs
   std::vector<Obstacle> obstacles_;

@@ -3,29 +3,29 @@
 // (e.g. 0 the body, 1 the obstacles) is a block of its own.
 #pragma once
 
+#include <fstream>
 #include <string>
-#include <vector>
 
 namespace ipstep {
 
 class PvdSeries {
  public:
-  // `path`: the .pvd file; the data files are named relative to its directory.
-  PvdSeries(std::string path, std::string flag);
-  // Adds `file` (relative to the .pvd's directory) as part `part` at `time` [s]
-  // and rewrites the .pvd, so that it is complete after every frame (also when
-  // a run stops). Throws InputError naming the flag if it cannot be written.
+  // Creates the .pvd at `path` (an empty collection); the data files are named
+  // relative to its directory. Throws InputError naming `flag` if it cannot be
+  // written.
+  PvdSeries(const std::string& path, const std::string& flag);
+  // Adds `file` (relative to the .pvd's directory) as part `part` at `time`
+  // [s]. The .pvd is complete after every call (also when a run stops there):
+  // the entry is written over the closing tags, which follow it again.
   void Add(double time, int part, const std::string& file);
 
  private:
-  struct Entry {
-    double time;
-    int part;
-    std::string file;
-  };
+  void WriteClosingTags();
+
   std::string path_;
   std::string flag_;
-  std::vector<Entry> entries_;
+  std::ofstream out_;
+  std::streampos end_of_entries_;
 };
 
 }  // namespace ipstep
