@@ -13,6 +13,7 @@
 
 #include <gflags/gflags.h>
 
+#include "apps/near_miss.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 
@@ -172,6 +173,16 @@ void NoteOrigin(const std::string& name, const std::string& origin) {
   }
 }
 
+// " (did you mean --optimizer?)" for a near miss of a defined flag's name.
+std::string FlagSuggestion(const std::string& name) {
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  std::vector<std::string> names;
+  for (const gflags::CommandLineFlagInfo& flag : flags) names.push_back(flag.name);
+  const std::string near = NearMiss(name, names);
+  return near.empty() ? "" : " (did you mean --" + near + "?)";
+}
+
 // Checks one flag argument (and the next one when it is the value); returns
 // the index of the last argument used.
 size_t CheckArgument(const std::vector<Argument>& arguments, size_t a) {
@@ -190,7 +201,7 @@ size_t CheckArgument(const std::vector<Argument>& arguments, size_t a) {
       NoteOrigin(name.substr(2), arguments[a].origin);
       return a;  // --noflag
     }
-    throw InputError("flag", "--" + name, "unknown flag (see --help)");
+    throw InputError("flag", "--" + name, "unknown flag" + FlagSuggestion(name) + " (see --help)");
   }
   std::string value;
   if (eq != std::string::npos) {

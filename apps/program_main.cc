@@ -7,109 +7,22 @@
 #include <vector>
 
 #include <gflags/gflags.h>
-#include <gflags/gflags_completions.h>
 #include <glog/logging.h>
 
 #include "apps/command_line.h"
+#include "apps/program_help.h"
 #include "core/input_error.h"
 #include "solver/allocator_tuning.h"
 
 namespace ipstep {
 namespace {
 
-std::string FlagValue(const char* name) {
-  std::string value;
-  gflags::GetCommandLineOption(name, &value);
-  return value;
-}
-
-bool FlagIsTrue(const char* name) { return FlagValue(name) == "true"; }
-
-// The program's own flags: those defined under apps/ or bench/ (not glog's or
-// gflags'), grouped by file as gflags does.
-void ShowOwnFlags(const char* program) {
-  std::printf("%s: %s\n", program, gflags::ProgramUsage());
-  std::vector<gflags::CommandLineFlagInfo> flags;
-  gflags::GetAllFlags(&flags);  // sorted by file, then name
-  std::string file;
-  for (const gflags::CommandLineFlagInfo& flag : flags) {
-    if (flag.filename.find("apps/") == std::string::npos &&
-        flag.filename.find("bench/") == std::string::npos) {
-      continue;
-    }
-    if (flag.filename != file) {
-      file = flag.filename;
-      std::printf("\n  Flags from %s:\n", file.c_str());
-    }
-    std::printf("%s", gflags::DescribeOneFlag(flag).c_str());
-  }
-}
-
-std::string XmlEscaped(const std::string& text) {
-  std::string escaped;
-  for (char c : text) {
-    switch (c) {
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      case '\'':
-        escaped += "&apos;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
-}
-
-// gflags' --helpxml format.
-void ShowFlagsAsXml(const char* program) {
-  std::printf("<?xml version=\"1.0\"?>\n<AllFlags>\n<program>%s</program>\n<usage>%s</usage>\n",
-              XmlEscaped(program).c_str(), XmlEscaped(gflags::ProgramUsage()).c_str());
-  std::vector<gflags::CommandLineFlagInfo> flags;
-  gflags::GetAllFlags(&flags);
-  for (const gflags::CommandLineFlagInfo& f : flags) {
-    std::printf(
-        "<flag><file>%s</file><name>%s</name><meaning>%s</meaning><default>%s</default>"
-        "<current>%s</current><type>%s</type></flag>\n",
-        XmlEscaped(f.filename).c_str(), XmlEscaped(f.name).c_str(),
-        XmlEscaped(f.description).c_str(), XmlEscaped(f.default_value).c_str(),
-        XmlEscaped(f.current_value).c_str(), XmlEscaped(f.type).c_str());
-  }
-  std::printf("</AllFlags>\n");
-}
-
-// gflags' help flags, which gflags itself answers with exit code 1. Returns
-// true (exit code 0) if one was given and answered.
-bool HandleHelpFlags(const char* program) {
-  google::HandleCommandLineCompletions();  // --tab_completion_word: prints, exits 0
-  if (FlagIsTrue("helpshort") || FlagIsTrue("helppackage")) {
-    ShowOwnFlags(program);
-  } else if (FlagIsTrue("help") || FlagIsTrue("helpfull")) {
-    gflags::ShowUsageWithFlags(program);
-  } else if (!FlagValue("helpon").empty()) {
-    gflags::ShowUsageWithFlagsRestrict(program, ("/" + FlagValue("helpon") + ".").c_str());
-  } else if (!FlagValue("helpmatch").empty()) {
-    gflags::ShowUsageWithFlagsRestrict(program, FlagValue("helpmatch").c_str());
-  } else if (FlagIsTrue("helpxml")) {
-    ShowFlagsAsXml(program);
-  } else if (FlagIsTrue("version")) {
-    const std::string version = gflags::VersionString();
-    std::printf("%s%s\n", program, version.empty() ? "" : (" version " + version).c_str());
-  } else {
-    return false;
-  }
-  std::fflush(stdout);
-  return true;
+// Quiet by default: glog's and Ceres's warnings (Ceres's "Restarting
+// non-linear conjugate gradients", "Error in evaluating the ResidualBlock", ...)
+// do not reach a normal run; only errors do. -v=1 or more (ipstep's step and
+// iteration logs) or an explicit --minloglevel brings them back.
+void QuietLogging() {
+  if (FLAGS_v <= 0 && FlagIsDefault("minloglevel")) FLAGS_minloglevel = google::GLOG_ERROR;
 }
 
 // " (in flagfile f, line 3)" for an error "flag: --name: ..." about a flag
@@ -125,9 +38,21 @@ std::string OriginNote(const std::string& message) {
 
 }  // namespace
 
+std::string ProgramName(int argc, char** argv, const char* fallback) {
+  if (argc < 1 || argv == nullptr || argv[0] == nullptr || argv[0][0] == '\0') return fallback;
+  const std::string path = argv[0];
+  const std::string name = path.substr(path.find_last_of('/') + 1);
+  return name.empty() ? fallback : name;
+}
+
 int ProgramMain(int argc, char** argv, const char* program, const char* usage,
                 const std::function<int()>& run) {
-  gflags::SetUsageMessage(usage);
+  // gflags aborts on a second usage message and glog on a second
+  // initialisation (a program that initialised glog itself, or called a Run*
+  // entry point before).
+  static bool usage_set = false;
+  if (!usage_set) gflags::SetUsageMessage(usage);
+  usage_set = true;
   FLAGS_logtostderr = true;
   KeepLargeAllocations();  // solver/allocator_tuning.h
   try {
@@ -141,7 +66,10 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
     char** parsed = pointers.data();
     gflags::ParseCommandLineNonHelpFlags(&count, &parsed, true);
     if (HandleHelpFlags(program)) return 0;
-    google::InitGoogleLogging(argc > 0 ? argv[0] : program);
+    QuietLogging();
+    if (!google::IsGoogleLoggingInitialized()) {
+      google::InitGoogleLogging(argc > 0 ? argv[0] : program);
+    }
     return run();
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: error: %s%s\n", program, e.what(), OriginNote(e.what()).c_str());

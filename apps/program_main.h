@@ -3,15 +3,23 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 namespace ipstep {
 
-// Logging is quiet by default: -v=1 logs every step, -v=2 every optimizer
-// iteration. Returns run()'s exit code, or kInputErrorExitCode after printing
+// Logging is quiet by default: glog's and Ceres's warnings are not shown;
+// -v=1 logs every step, -v=2 every optimizer iteration, and both show the
+// warnings (so does an explicit --minloglevel=0). Returns run()'s exit code, or kInputErrorExitCode
+// after printing
 // "<program>: error: <message>" for an InputError (1 and "internal error" for any
 // other exception).
-// --help and its variants print and return 0 (gflags would exit with 1).
+// --help and its variants print and return 0 (gflags would exit with 1;
+// apps/program_help.h).
 int ProgramMain(int argc, char** argv, const char* program, const char* usage,
                 const std::function<int()>& run);
+
+// The name of the running program for messages: the file name of argv[0], or
+// `fallback` when there is none.
+std::string ProgramName(int argc, char** argv, const char* fallback);
 
 }  // namespace ipstep

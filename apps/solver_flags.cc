@@ -1,6 +1,7 @@
 #include "apps/solver_flags.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "apps/command_line.h"
 #include "apps/contact_flags.h"
@@ -9,8 +10,7 @@
 #include "sim/default_effects.h"
 
 DEFINE_string(scene, "oscillator",
-              "Built-in scene name (oscillator, spring_pendulum, cloth, fpu) or path to a JSON "
-              "scene file");
+              "Built-in scene name (listed in --help) or path to a JSON scene file");
 DEFINE_string(integrator, "backward_euler",
               "backward_euler | newmark | quasi_static | symplectic_euler");
 DEFINE_string(optimizer, "newton",
@@ -74,8 +74,9 @@ void RequireOptimizerFamily(const char* flag, OptimizerFamily family, Optimizer 
 
 }  // namespace
 
-SimulationOptions SimulationOptionsFromFlags() {
+SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   SimulationOptions o;
+  o.effects = &registry;
   o.integrator.name = FLAGS_integrator;
   o.integrator.newmark_beta = FLAGS_newmark_beta;
   o.integrator.newmark_gamma = FLAGS_newmark_gamma;
@@ -140,13 +141,13 @@ SimulationOptions SimulationOptionsFromFlags() {
   return o;
 }
 
-SceneLoadOptions SceneLoadOptionsFromFlags() {
+SceneLoadOptions SceneLoadOptionsFromFlags(const EffectRegistry& registry) {
   SceneLoadOptions o;
   if (!FlagIsDefault("grid_size")) {
     o.grid_size =
         CheckFlagRange("grid_size", FLAGS_grid_size, 2, limits::kMaxGridSize, "the scene's size");
   }
-  o.extra_effects = DefaultEffects().UserNames();
+  o.extra_effects = registry.UserNames();
   return o;
 }
 

@@ -4,7 +4,9 @@
 
 #include <gflags/gflags.h>
 
+#include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/default_effects.h"
 #include "sim/simulation.h"
 
 DECLARE_string(scene);
@@ -18,7 +20,10 @@ DECLARE_int32(grid_size);
 namespace ipstep {
 
 // Reads and validates the flags. Throws InputError naming the flag.
-SimulationOptions SimulationOptionsFromFlags();
-SceneLoadOptions SceneLoadOptionsFromFlags();
+// `registry`: the effects scenes are built with (SimulationOptions::effects;
+// it must outlive the simulations).
+SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry = DefaultEffects());
+// `registry`: its user effects are accepted in scenes (SceneLoadOptions::extra_effects).
+SceneLoadOptions SceneLoadOptionsFromFlags(const EffectRegistry& registry = DefaultEffects());
 
 }  // namespace ipstep

@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "apps/divergence.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/parse_number.h"
@@ -154,9 +155,11 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
   const auto setup_start = Clock::now();
   SceneLoadOptions load;
   load.grid_size = config.grid_size;
-  load.extra_effects = DefaultEffects().UserNames();
+  const EffectRegistry& effects = config.effects ? *config.effects : DefaultEffects();
+  load.extra_effects = effects.UserNames();
   const Scene scene = LoadScene(config.scene, load);
   SimulationOptions options;
+  options.effects = &effects;
   options.integrator.name = config.integrator;
   options.optimizer = spec.options;
   options.time_step = config.dt;
@@ -197,12 +200,13 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
       ++out.failed_steps;
       if (out.status == "ok") out.status = "failed steps (first: " + report.status + ")";
     }
-    if (!state.x.allFinite() || !state.v.allFinite()) {
-      out.status = "diverged at step " + std::to_string(step + 1);
-      break;
-    }
     const double drift = std::abs(report.energies.total() - out.initial_energy) / scale;
     out.max_energy_drift = std::max(out.max_energy_drift, std::isfinite(drift) ? drift : 1e300);
+    if (RunDiverged(out.initial_energy, report.energies.total(),
+                    state.x.allFinite() && state.v.allFinite())) {
+      out.status = "diverged at step " + std::to_string(step + 1);  // apps/divergence.h
+      break;
+    }
     if (config.max_run_seconds > 0.0 && Since(loop_start) > config.max_run_seconds &&
         step + 1 < config.steps) {
       out.status = "timeout after " + std::to_string(step + 1) + " steps";
@@ -248,6 +252,7 @@ const Reference& ReferenceCache::Get(const std::string& scene, int grid_size,
   Reference& reference = cache_[key];
   const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
   RunConfig config;
+  config.effects = effects_;
   config.scene = scene;
   config.grid_size = grid_size;
   config.integrator = method;
@@ -291,6 +296,8 @@ std::string CsvRow(const RunRow& row) {
       row.wall.empty() ? std::nan("") : *std::min_element(row.wall.begin(), row.wall.end());
   const int steps = std::max(1, t.steps_done);
   const bool ran = t.steps_done > 0;
+  // A diverged run's drift is meaningless, and so is a relative drift from E_0 = 0.
+  const bool diverged = t.status.rfind("diverged", 0) == 0;
   const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
   out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
@@ -302,8 +309,9 @@ std::string CsvRow(const RunRow& row) {
       << Number(static_cast<double>(t.iterations) / steps) << ',' << t.max_step_iterations << ','
       << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
       << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
-      << Number(row.position_error) << ',' << Number(ran ? t.max_energy_drift : std::nan("")) << ','
-      << Quote(row.reference) << ',' << Number(row.reference_dt) << ','
+      << Number(row.position_error) << ','
+      << Number(ran && !diverged && t.initial_energy != 0.0 ? t.max_energy_drift : std::nan(""))
+      << ',' << Quote(row.reference) << ',' << Number(row.reference_dt) << ','
       << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
       << Number(pn ? t.phases.factorize : std::nan("")) << ','
       << Number(pn ? t.phases.line_search : std::nan("")) << ','

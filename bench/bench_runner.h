@@ -44,6 +44,8 @@ struct RunConfig {
   int repeats = 1;
   int warmup = 0;
   double max_run_seconds = 0.0;  // one run stops (status "timeout") beyond this; 0: none
+  // The effects scenes are loaded and built with; null: DefaultEffects().
+  const EffectRegistry* effects = nullptr;
 };
 
 // What one run (one trajectory) produced.
@@ -51,7 +53,7 @@ struct Trajectory {
   Eigen::VectorXd final_x;
   std::vector<int> free_nodes;
   double initial_energy = 0.0;
-  double max_energy_drift = 0.0;  // max_n |E_n - E_0| / |E_0|
+  double max_energy_drift = 0.0;  // max_n |E_n - E_0| / |E_0| (the CSV leaves it out for E_0 = 0)
   int steps_done = 0;
   int failed_steps = 0;
   double worst_residual = 0.0;  // largest stopping measure at the end of a step [m/s]
@@ -60,7 +62,9 @@ struct Trajectory {
   long evaluations = 0;
   double loop_seconds = 0.0;   // Step() loop
   double setup_seconds = 0.0;  // scene loading + Simulation construction
-  std::string status = "ok";   // ok | failed steps | diverged | timeout | error: ...
+  // ok | failed steps (first: ...) | diverged at step N (apps/divergence.h: the
+  // run stops there) | timeout after N steps | error: ...
+  std::string status = "ok";
   int nodes = 0;
   int free_dofs = 0;
   int dimension = 2;
@@ -102,8 +106,8 @@ struct Reference {
 };
 class ReferenceCache {
  public:
-  ReferenceCache(std::string optimizer, double tolerance)
-      : optimizer_(std::move(optimizer)), tolerance_(tolerance) {}
+  ReferenceCache(std::string optimizer, double tolerance, const EffectRegistry* effects = nullptr)
+      : optimizer_(std::move(optimizer)), tolerance_(tolerance), effects_(effects) {}
   // The reference integrator for runs of `integrator`: quasi_static for
   // quasi_static (a different problem), newmark (trapezoidal, order 2) otherwise.
   static std::string ReferenceIntegrator(const std::string& integrator);
@@ -113,6 +117,7 @@ class ReferenceCache {
  private:
   std::string optimizer_;
   double tolerance_;
+  const EffectRegistry* effects_;
   std::map<std::tuple<std::string, int, std::string, double, double>, Reference> cache_;
 };
 

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The hard-case suite (problems/hard/README.md): runs the ipstep program on
 each hard scene x integrator x optimiser and prints a markdown table of failed
 steps, substepped steps, the energy change, the largest energy growth of a

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Plots and markdown tables from ipstep_bench CSV files (docs/benchmarks.md).
 
   plot_benchmarks.py work-precision RESULTS.csv --out docs/img
@@ -16,7 +16,12 @@
 --time: ms per step from the median of the timed runs (default) or from the
 fastest one (min: on a shared machine, the run least disturbed by others).
 
-Needs only matplotlib (Debian: python3-matplotlib) and the standard library.
+Runs leave the plots when they diverged (a position, velocity or energy became
+non-finite, or |E - E0| > 1e6 |E0|: apps/divergence.h); the tables mark them.
+
+Needs only matplotlib and the standard library: run it with the interpreter that
+has matplotlib (Debian: /usr/bin/python3 with python3-matplotlib; a python3 from
+pyenv or a virtualenv first on PATH may not have it).
 """
 import argparse
 import csv
@@ -25,10 +30,19 @@ import os
 import sys
 from collections import defaultdict
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit(f"{sys.argv[0]}: matplotlib is not installed for {sys.executable}; install "
+             "python3-matplotlib (tools/install_dependencies.sh) and run it with /usr/bin/python3")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+# apps/divergence.h: kDivergedEnergyRatio. CSV files written before ipstep_bench
+# marked such runs "diverged" have status "ok" and a huge energy_drift (ipstep_bench
+# now leaves energy_drift empty when E_0 = 0, where a relative drift means nothing).
+DIVERGED_ENERGY_RATIO = 1e6
 
 
 def number(text):
@@ -59,8 +73,19 @@ def ok(r):
     return r["status"] == "ok" and r["steps_done"] == r["steps"]
 
 
+def diverged(r):
+    """The run diverged (apps/divergence.h)."""
+    if r["status"].startswith("diverged"):
+        return True
+    drift, error = r["energy_drift"], r["position_error"]
+    return (drift == drift and not drift <= DIVERGED_ENERGY_RATIO) or error in (math.inf, -math.inf)
+
+
 def usable(r):
-    """Completed runs (possibly with failed steps) that have an error value."""
+    """Completed runs (possibly with failed steps) that have an error value and did not
+    diverge."""
+    if diverged(r):
+        return False
     if r["optimizer"] == "none" and r["failed_steps"] > 0:
         return False  # explicit integrator blew up (forces not evaluable)
     return r["steps_done"] == r["steps"] and not r["status"].startswith(("error", "diverged",
@@ -237,6 +262,8 @@ def table(rows, baseline):
         per_it = (r["ms_per_step"] / r["iterations_per_step"]
                   if r["iterations_per_step"] > 0 else math.nan)
         status = r["status"] if len(r["status"]) < 60 else r["status"][:57] + "..."
+        if diverged(r) and not status.startswith("diverged"):
+            status = "diverged"
         print(f'| {scene_name(r)} | {int(r["free_dofs"])} | {r["integrator"]} | {r["optimizer"]} '
               + (f'| {fmt(r["tolerance"], "g")} ' if tolerances else '') +
               f'| {fmt(r["iterations_per_step"])} | {fmt(r["ms_per_step"])} | {fmt(per_it)} '

@@ -2,12 +2,21 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
+# ipstep::ipstep (the library: one target per folder, cmake/ipstep_library.cmake)
+# and ipstep::flags (the programs as library calls, apps/programs.h, with their
+# flags).
 get_property(ipstep_libraries GLOBAL PROPERTY IPSTEP_LIBRARIES)
-install(TARGETS ipstep ${ipstep_libraries} EXPORT ipstepTargets
+install(TARGETS ipstep ${ipstep_libraries} ipstep_flags EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS ipstep_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(dir contact core energies integrators problems sim solver io)
+install(TARGETS ipstep_app ipstep_compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET ipstep_bench_lib)  # ipstep::bench (bench/bench_program.h: RunBench)
+  install(TARGETS ipstep_bench_lib EXPORT ipstepTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(TARGETS ipstep_bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(FILES ${PROJECT_SOURCE_DIR}/bench/bench_program.h ${PROJECT_SOURCE_DIR}/bench/bench_runner.h
+          DESTINATION include/ipstep/bench)
+endif()
+foreach(dir apps contact core energies integrators problems sim solver io)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION include/ipstep/${dir}
     FILES_MATCHING PATTERN "*.h")
 endforeach()

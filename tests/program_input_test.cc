@@ -243,12 +243,134 @@ TEST_F(ProgramInput, BenchFlagsFollowTheContract) {
     EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
   }
   EXPECT_NE(run("--helpshort").output.find("repeats"), std::string::npos);
+  // A run that blows up is "diverged" in the CSV, with no drift or error value.
+  const std::string csv = (dir_ / "diverged.csv").string();
+  const Outcome blown =
+      run("--scenes=cloth --grid_sizes=6 --integrators=symplectic_euler --steps=20 --repeats=1 "
+          "--warmup=0 --output=" +
+          csv);
+  ASSERT_EQ(blown.exit_code, 0) << blown.output;
+  std::ifstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_NE(row.find(",diverged at step "), std::string::npos) << row;
+  EXPECT_EQ(row.find("e+"), std::string::npos) << row;
   const Outcome ok = run("--grid_sizes=scene,4 --scenes=cloth --steps=3 --dry_run");
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("grid=0"), std::string::npos) << ok.output;
   EXPECT_NE(ok.output.find("grid=4"), std::string::npos) << ok.output;
 }
 #endif
+
+// Help finds the programs' own flags first, grouped, with the built-in scenes;
+// glog's flags only with --helpfull.
+TEST_F(ProgramInput, HelpShowsTheProgramsFlagsGrouped) {
+  for (const char* help : {"--help", "--helpshort"}) {
+    const Outcome o = RunIpstep(help);
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    size_t last = 0;
+    for (const char* group : {"\nScene:", "\nIntegrator and failed steps:", "\nOptimiser:",
+                              "\nContact (", "\nOutput:"}) {
+      const size_t at = o.output.find(group);
+      EXPECT_NE(at, std::string::npos) << help << ": " << group << "\n" << o.output;
+      EXPECT_GT(at, last) << help << ": " << group << " out of order";
+      last = at;
+    }
+    for (const char* flag : {"-scene ", "-integrator ", "-optimizer ", "-tolerance ", "-dt ",
+                             "-contact_kappa ", "-stats ", "-frames "}) {
+      EXPECT_NE(o.output.find(flag), std::string::npos) << help << ": " << flag;
+    }
+    for (const char* scene : {"oscillator", "cloth_sphere", "two_squares", "drop"}) {
+      EXPECT_NE(o.output.find(scene), std::string::npos) << help << ": " << scene;
+    }
+    EXPECT_EQ(o.output.find("logtostderr"), std::string::npos) << help;
+    EXPECT_NE(o.output.find("--helpfull"), std::string::npos) << help;
+  }
+  const Outcome full = RunIpstep("--helpfull");
+  EXPECT_EQ(full.exit_code, 0);
+  EXPECT_NE(full.output.find("logtostderr"), std::string::npos);
+  EXPECT_LT(full.output.find("-scene "), full.output.find("logtostderr"));
+  const Outcome compare = ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, "--help");
+  // ipstep_compare's lists in their groups.
+  EXPECT_GT(compare.output.find("-integrators "), compare.output.find("\nIntegrator"))
+      << compare.output;
+  EXPECT_GT(compare.output.find("-optimizers "), compare.output.find("\nOptimiser:"))
+      << compare.output;
+  EXPECT_NE(compare.output.find("-optimizers "), std::string::npos) << compare.output;
+}
+
+TEST_F(ProgramInput, VersionIsTheProjectVersion) {
+  const Outcome o = RunIpstep("--version");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_EQ(o.output, std::string("ipstep ") + IPSTEP_VERSION + "\n");
+  const Outcome compare = ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, "--version");
+  EXPECT_EQ(compare.output, std::string("ipstep_compare ") + IPSTEP_VERSION + "\n");
+}
+
+// A near miss of a flag's name gets a suggestion; a bad list item names the
+// list flag.
+TEST_F(ProgramInput, NearMissesAreSuggested) {
+  ExpectInputError("--optimiser=ncg", "--optimiser", "did you mean --optimizer?");
+  ExpectInputError("--tolerence=1e-3", "--tolerence", "did you mean --tolerance?");
+  ExpectInputError("--sene=cloth", "--sene", "did you mean --scene?");
+  const Outcome far = RunIpstep("--completely_unrelated=1");
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
+  const auto compare = [](const std::string& arguments) {
+    return ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, arguments);
+  };
+  Outcome o = compare("--optimizers=newton,newtn");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output.rfind("ipstep_compare: error: flag: --optimizers: unknown optimizer 'newtn' "
+                           "(did you mean newton?)",
+                           0),
+            0u)
+      << o.output;
+  o = compare("--integrators=newmrk");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output.rfind("ipstep_compare: error: flag: --integrators: unknown integrator "
+                           "'newmrk' (did you mean newmark?)",
+                           0),
+            0u)
+      << o.output;
+}
+
+// Ceres's warnings (here nonlinear CG's restarts) stay out of a normal run;
+// -v=1 brings them back.
+TEST_F(ProgramInput, CeresWarningsOnlyWhenAsked) {
+  const std::string args =
+      "--scene=cloth --grid_size=8 --optimizer=ncg --steps=3 --on_failure=continue";
+  const Outcome quiet = RunIpstep(args);
+  EXPECT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("Restarting"), std::string::npos) << quiet.output;
+  EXPECT_EQ(quiet.output.find("W1"), std::string::npos) << quiet.output;  // glog's W<mmdd> prefix
+  const Outcome verbose = RunIpstep(args + " -v=1");
+  EXPECT_NE(verbose.output.find("Restarting non-linear conjugate gradients"), std::string::npos)
+      << verbose.output.substr(0, 2000);
+}
+
+// ipstep_compare: one progress line per configuration on stderr, the table on
+// stdout, and a run that blows up is "diverged", not a number.
+TEST_F(ProgramInput, CompareReportsProgressAndDivergence) {
+  const std::string args =
+      "--scene=cloth --grid_size=6 --steps=20 --integrators=backward_euler,symplectic_euler "
+      "--optimizers=newton,lbfgs";
+  const Outcome stdout_only = ipstep::testing::RunProgram(
+      std::string(IPSTEP_COMPARE_BINARY) + " " + args + " 2>/dev/null; exit $?", "");
+  const Outcome both = ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, args);
+  ASSERT_EQ(both.exit_code, 0) << both.output;
+  for (const char* line : {"[1/3] backward_euler newton", "[2/3] backward_euler lbfgs",
+                           "[3/3] symplectic_euler (explicit)"}) {
+    EXPECT_NE(both.output.find(line), std::string::npos) << line << "\n" << both.output;
+    EXPECT_EQ(stdout_only.output.find(line), std::string::npos) << stdout_only.output;
+  }
+  EXPECT_NE(stdout_only.output.find("| symplectic_euler | (explicit) |"), std::string::npos);
+  EXPECT_NE(stdout_only.output.find("| diverged (step "), std::string::npos) << stdout_only.output;
+  EXPECT_NE(stdout_only.output.find("diverged: a position, velocity or energy became non-finite"),
+            std::string::npos);
+  EXPECT_EQ(stdout_only.output.find("e+"), std::string::npos) << stdout_only.output;
+}
 
 TEST_F(ProgramInput, BadSceneFiles) {
   ExpectInputError("--scene=" + (dir_ / "missing.json").string(), "missing.json", "");
@@ -313,9 +435,10 @@ TEST_F(ProgramInput, ValidRunWritesItsOutputs) {
   std::string first;
   std::getline(p, first);
   EXPECT_EQ(first, "node,x,y");
-  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00000.vtk"));
-  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00004.vtk"));
-  EXPECT_FALSE(fs::exists(fs::path(frames) / "frame_00003.vtk"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "run.pvd"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00000.vtu"));
+  EXPECT_TRUE(fs::exists(fs::path(frames) / "frame_00004.vtu"));
+  EXPECT_FALSE(fs::exists(fs::path(frames) / "frame_00003.vtu"));
   std::ifstream l(log);
   std::getline(l, header);
   EXPECT_EQ(header, "step,iteration,energy,gradient_norm,step_size,seconds,residual");

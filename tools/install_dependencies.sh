@@ -6,7 +6,9 @@ packages=(
   cmake g++ make
   libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev
-  python3 python3-matplotlib  # bench/plot_results.py
+  # bench/plot_benchmarks.py (matplotlib), tools/animate.py (matplotlib, Pillow
+  # for GIFs): run them with /usr/bin/python3, which has these packages.
+  python3 python3-matplotlib python3-pil
 )
 run_as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi

@@ -1,0 +1,153 @@
+// RunIpstep (apps/programs.h), the ipstep program: runs one scene with one
+// integrator and one optimiser.
+//   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
+// Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed (also
+// as substeps, --max_substeps) with --on_failure=stop.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include "apps/command_line.h"
+#include "apps/contact_flags.h"
+#include "apps/program_main.h"
+#include "apps/programs.h"
+#include "apps/solver_flags.h"
+#include "core/input_error.h"
+#include "core/input_limits.h"
+#include "io/frame_writer.h"
+#include "io/positions_writer.h"
+#include "io/stats_writer.h"
+#include "problems/scene_loader.h"
+#include "sim/simulation.h"
+
+DEFINE_string(on_failure, "stop",
+              "When a step fails (not converged, energy growth, penetration, non-finite) even "
+              "after its substeps: stop (exit code 3) or continue");
+DEFINE_int32(max_substeps, 16,
+             "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
+             "1: no retry");
+DEFINE_string(stats, "", "CSV file: one row per step");
+DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
+DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
+DEFINE_string(frames, "",
+              "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body, "
+              "obstacles) at its simulated time; tools/animate.py DIR OUT.gif draws it");
+DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
+DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer than 3 s");
+
+namespace ipstep {
+namespace {
+
+int Run(const EffectRegistry& registry) {
+  SimulationOptions options = SimulationOptionsFromFlags(registry);
+  if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
+    throw InputError("flag", "--on_failure",
+                     "must be 'stop' or 'continue', got '" + ClipInput(FLAGS_on_failure) + "'");
+  }
+  options.max_substeps =
+      CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps; 1 is no retry");
+  CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
+  const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
+  CheckContactFlagsApply(scene);
+  Simulation sim(scene, options);
+
+  std::unique_ptr<StatsWriter> stats;
+  std::unique_ptr<IterationLogWriter> iterations;
+  std::unique_ptr<FrameWriter> frames;
+  if (!FLAGS_stats.empty()) {
+    stats = std::make_unique<StatsWriter>(FLAGS_stats, "--stats", sim.DiagnosticNames());
+  }
+  if (!FLAGS_iterations_log.empty()) {
+    iterations = std::make_unique<IterationLogWriter>(FLAGS_iterations_log, "--iterations_log");
+    sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });
+  }
+  if (!FLAGS_frames.empty()) {
+    frames = std::make_unique<FrameWriter>(FLAGS_frames, sim);
+    frames->Write(0);
+  }
+
+  std::printf("scene %s (%s): %d nodes, %d free, dimension %d\n", scene.name.c_str(),
+              scene.source.c_str(), sim.state().num_nodes(), sim.state().num_free_nodes(),
+              scene.dimension);
+  std::printf("integrator %s, optimizer %s, dt %g s, %d steps, tolerance %g m/s\n",
+              sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer),
+              sim.time_step(), sim.steps(), options.optimizer.tolerance);
+  std::printf("active effects:\n");
+  if (sim.integrator().has_inertia() && sim.integrator().is_variational()) {
+    std::printf("  inertia: %d terms\n", sim.potential().CountTerms(TermKind::kInertia));
+  }
+  for (const std::string& line : sim.effect_summaries()) std::printf("  %s\n", line.c_str());
+  std::fflush(stdout);
+
+  const EnergyReport e0 = sim.Energies();
+  const auto start = std::chrono::steady_clock::now();
+  auto last_progress = start;
+  int failures = 0, substepped = 0;
+  long total_iterations = 0;
+  double solve_seconds = 0.0;
+  bool progress_shown = false;
+  for (int step = 1; step <= sim.steps(); ++step) {
+    if (iterations) iterations->set_step(step);
+    const StepReport r = sim.Step();
+    total_iterations += r.iterations;
+    solve_seconds += r.wall_seconds;
+    if (stats) stats->Write(r);
+    if (frames && step % FLAGS_frame_every == 0) frames->Write(step);
+    VLOG(1) << "step " << step << " t=" << r.time << " iterations=" << r.iterations
+            << " residual=" << r.residual << " E=" << r.energies.total() << " " << r.status;
+    if (r.converged && r.substeps > 1) {
+      ++substepped;
+      std::fprintf(stderr, "%sstep %d (t = %g): %s; converged as %d substeps\n",
+                   progress_shown ? "\n" : "", step, r.time, r.retry_reason.c_str(), r.substeps);
+      progress_shown = false;
+    }
+    if (!r.converged) {
+      ++failures;
+      std::fprintf(stderr, "%sstep %d (t = %g): %s after %d iterations, residual %.3g m/s\n",
+                   progress_shown ? "\n" : "", step, r.time, r.status.c_str(), r.iterations,
+                   r.residual);
+      progress_shown = false;
+      if (FLAGS_on_failure == "stop") {
+        std::fprintf(stderr, "stopping (--on_failure=stop)\n");
+        if (!FLAGS_positions.empty())
+          WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
+        return kStepFailureExitCode;
+      }
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (FLAGS_progress && std::chrono::duration<double>(now - start).count() > 3.0 &&
+        std::chrono::duration<double>(now - last_progress).count() > 1.0) {
+      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  iterations %d  residual %.2e   ", step,
+                   sim.steps(), r.time, r.iterations, r.residual);
+      last_progress = now;
+      progress_shown = true;
+    }
+  }
+  if (progress_shown) std::fprintf(stderr, "\n");
+  if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
+  const EnergyReport e1 = sim.Energies();
+  const int n = std::max(1, sim.steps());
+  std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step\n",
+              sim.steps(), failures, substepped, static_cast<double>(total_iterations) / n,
+              1e3 * solve_seconds / n);
+  std::printf("energy: initial %.10g J, final %.10g J (kinetic %.6g, potential %.6g)\n", e0.total(),
+              e1.total(), e1.kinetic, e1.potential);
+  return 0;
+}
+
+}  // namespace
+
+int RunIpstep(int argc, char** argv, const EffectRegistry& registry) {
+  return ProgramMain(
+      argc, argv, ProgramName(argc, argv, "ipstep").c_str(),
+      "ipstep --scene=NAME|FILE --integrator=... --optimizer=... [--dt --steps --stats ...]",
+      [&registry] { return Run(registry); });
+}
+
+int RunIpstep(int argc, char** argv) { return RunIpstep(argc, argv, DefaultEffects()); }
+
+}  // namespace ipstep

@@ -1,0 +1,31 @@
+// A ParaView time series (.pvd): the files of each frame with the simulated
+// time as their `timestep`, so ParaView's time slider shows seconds. Each part
+// (e.g. 0 the body, 1 the obstacles) is a block of its own.
+#pragma once
+
+#include <fstream>
+#include <string>
+
+namespace ipstep {
+
+class PvdSeries {
+ public:
+  // Creates the .pvd at `path` (an empty collection); the data files are named
+  // relative to its directory. Throws InputError naming `flag` if it cannot be
+  // written.
+  PvdSeries(const std::string& path, const std::string& flag);
+  // Adds `file` (relative to the .pvd's directory) as part `part` at `time`
+  // [s]. The .pvd is complete after every call (also when a run stops there):
+  // the entry is written over the closing tags, which follow it again.
+  void Add(double time, int part, const std::string& file);
+
+ private:
+  void WriteClosingTags();
+
+  std::string path_;
+  std::string flag_;
+  std::ofstream out_;
+  std::streampos end_of_entries_;
+};
+
+}  // namespace ipstep

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# ctest plot_benchmarks: bench/plot_benchmarks.py on a sweep with diverged runs
+# (symplectic Euler on the cloth: status "diverged at step N", and a row as
+# CSV files from before that status have it: status ok, error 6e72, drift
+# 1e300) leaves them out of the plots, marks them in its table and draws every
+# plot. Exit code 77 (skipped) without an interpreter that has matplotlib.
+#   plot_benchmarks_test.sh IPSTEP_BENCH SOURCE_DIR WORK_DIR
+set -euo pipefail
+bench=$1 source=$2 work=$3
+python=""
+for candidate in python3 /usr/bin/python3; do
+  if "$candidate" -c 'import matplotlib' 2> /dev/null; then
+    python=$candidate
+    break
+  fi
+done
+if [ -z "$python" ]; then
+  echo "no python3 with matplotlib: skipped"
+  exit 77
+fi
+rm -rf "$work"
+mkdir -p "$work"
+"$bench" --scenes=cloth --grid_sizes=6 --integrators=newmark,symplectic_euler --optimizers=newton \
+  --dt_factors=1,0.5 --steps=20 --repeats=1 --warmup=0 --output="$work/sweep.csv" 2> /dev/null
+"$python" - "$source/bench" "$work" << 'PY'
+import csv, os, sys
+sys.path.insert(0, sys.argv[1])
+work = sys.argv[2]
+import plot_benchmarks as pb
+rows = list(csv.DictReader(open(f"{work}/sweep.csv")))
+legacy = dict(rows[-1], id="99", status="ok", position_error="6.4e+72", energy_drift="1e+300")
+legacy["steps_done"] = legacy["steps"]
+with open(f"{work}/with_legacy.csv", "w", newline="") as f:
+    writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows(rows + [legacy])
+rows = pb.read(f"{work}/with_legacy.csv")
+verdicts = [(r["integrator"], pb.diverged(r), pb.usable(r)) for r in rows]
+assert verdicts == [("newmark", False, True)] * 2 + [("symplectic_euler", True, False)] * 3, verdicts
+assert all(r["status"].startswith("diverged") for r in rows[2:4]), [r["status"] for r in rows]
+pb.work_precision(rows, f"{work}/plots")
+for name in ("work_precision", "convergence", "iterations", "energy_drift"):
+    assert os.path.getsize(f"{work}/plots/{name}.png") > 0, name
+print("diverged runs left out; every plot drawn")
+PY
+"$python" "$source/bench/plot_benchmarks.py" table "$work/with_legacy.csv" > "$work/table.md"
+if [ "$(grep -c '| diverged' "$work/table.md")" -ne 3 ]; then
+  echo "the table should mark three runs diverged:"
+  cat "$work/table.md"
+  exit 1
+fi
