@@ -6,7 +6,7 @@ install(TARGETS ipstep ipstep_scene EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS ipstep_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(dir contact core energies integrators problems sim solver io)
+foreach(dir contact core energies integrators mesh problems sim solver io)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION include/ipstep/${dir}
     FILES_MATCHING PATTERN "*.h")
 endforeach()

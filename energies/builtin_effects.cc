@@ -7,6 +7,7 @@
 #include "contact/contact_effects.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
+#include "energies/elasticity/elasticity_effect.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
 #include "energies/quartic_spring.h"
@@ -127,6 +128,8 @@ void RegisterBuiltinEffects(EffectRegistry* registry) {
   registry->Register("damping", "Rayleigh dissipation, mass- and stiffness-proportional",
                      BuildDamping);
   registry->loader_native_ = registry->Names();
+  registry->Register("elasticity", "elastic solids: FEM triangles/tetrahedra of the \"solid\"",
+                     BuildElasticity);
   // Contact and friction: parameters from their own scene objects (contact/).
   RegisterContactEffects(registry);
 }

@@ -4,12 +4,15 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace ipstep {
+
+struct Solid;  // problems/solid.h
 
 enum class SpringModel {
   kHookean,        // k/2 (|d| - L)^2
@@ -52,6 +55,9 @@ struct Scene {
   std::vector<double> masses;      // [kg], one per node, > 0
 
   std::vector<Spring> springs;
+  // An elastic solid ("solid": mesh and material) whose nodes are the scene's
+  // nodes; its energy is the "elasticity" effect. Null without one.
+  std::shared_ptr<const Solid> solid;
   std::vector<int> pinned;  // node indices held fixed
   std::vector<MovingNode> moving;
 

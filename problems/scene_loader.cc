@@ -20,6 +20,7 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "problems/solid_loader.h"  // "solid": elastic solids
 
 namespace ipstep {
 namespace internal {
@@ -41,7 +42,7 @@ constexpr int64_t kMaxNodes = 1000000;
 constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
 
 constexpr char kOneNodeSource[] =
-    "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\"";
+    "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\", \"solid\"";
 
 const std::vector<std::string>& BuiltinEffects() {
   static const auto* const effects = new std::vector<std::string>{"gravity", "springs", "damping"};
@@ -49,10 +50,12 @@ const std::vector<std::string>& BuiltinEffects() {
 }
 
 const std::vector<std::string>& TopLevelKeys() {
-  static const auto* const keys = new std::vector<std::string>{
-      "name",     "description",     "dimension", "time_step", "steps",  "effects", "nodes",
-      "particle", "chain",           "grid",      "springs",   "pinned", "moving",  "gravity",
-      "damping",  "initial_velocity"};
+  static const auto* const keys =
+      new std::vector<std::string>{"name",   "description", "dimension", "time_step",
+                                   "steps",  "effects",     "nodes",     "particle",
+                                   "chain",  "grid",        "springs",   "pinned",
+                                   "moving", "gravity",     "damping",   "initial_velocity",
+                                   "solid"};
   return *keys;
 }
 
@@ -398,7 +401,7 @@ class SceneParser {
 
  private:
   // What made the nodes; node names ("top_left", "last", ...) depend on it.
-  enum class Layout { kExplicit, kParticle, kChain, kGrid };
+  enum class Layout { kExplicit, kParticle, kChain, kGrid, kSolid };
 
   int dim() const { return scene_.dimension; }
   int num_nodes() const { return scene_.num_nodes(); }
@@ -461,7 +464,7 @@ class SceneParser {
 
   void ReadNodes(const JsonNode& root) {
     std::string source_key;
-    for (const char* key : {"nodes", "particle", "chain", "grid"}) {
+    for (const char* key : {"nodes", "particle", "chain", "grid", "solid"}) {
       if (!root.Has(key)) continue;
       if (!source_key.empty()) {
         root.FailAt(key, "conflicts with " + Quoted(source_key) + ": " + kOneNodeSource);
@@ -482,6 +485,8 @@ class SceneParser {
       ReadParticle(generator);
     } else if (source_key == "chain") {
       ReadChain(generator);
+    } else if (source_key == "solid") {
+      ReadSolidNodes(generator);
     } else {
       ReadGrid(generator);
     }
@@ -509,6 +514,19 @@ class SceneParser {
     const std::vector<double> v = velocity.Velocity(dim());
     std::copy(v.begin(), v.end(), scene_.velocities.begin() + dim() * index);
     velocity_paths_[index] = velocity.path();
+  }
+
+  // "solid": an elastic solid's mesh and material (problems/solid_loader.h).
+  void ReadSolidNodes(const JsonNode& solid) {
+    layout_ = Layout::kSolid;
+    RequireEffect(solid, "elasticity");
+    auto data = std::make_shared<Solid>(ReadSolid(solid.value(), dim(), source_, solid.path()));
+    const std::vector<double> masses = LumpedMasses(data->mesh, data->material.density);
+    for (int i = 0; i < data->mesh.num_nodes(); ++i) {
+      const double* x = data->mesh.positions.data() + dim() * i;
+      AddNode(std::vector<double>(x, x + dim()), masses[i]);
+    }
+    scene_.solid = std::move(data);
   }
 
   // "particle": {"position": [...], "mass": m, "velocity": [...]}.
@@ -832,6 +850,8 @@ class SceneParser {
         names["left_column"].push_back(row * nx_);
         names["right_column"].push_back(row * nx_ + nx_ - 1);
       }
+    } else if (layout_ == Layout::kSolid) {
+      names = scene_.solid->mesh.node_sets;
     } else {
       reference.Fail("node names such as " + Quoted(name) +
                      " need a \"chain\" or \"grid\" generator; use a node index");

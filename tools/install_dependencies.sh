@@ -6,6 +6,7 @@ packages=(
   cmake g++ make
   libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev
+  libgmsh-dev  # elastic solids: meshing and .msh files (mesh/gmsh_mesh.h)
   python3 python3-matplotlib  # bench/plot_results.py
 )
 run_as_root() {
