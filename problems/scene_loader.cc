@@ -50,12 +50,10 @@ const std::vector<std::string>& BuiltinEffects() {
 }
 
 const std::vector<std::string>& TopLevelKeys() {
-  static const auto* const keys =
-      new std::vector<std::string>{"name",   "description", "dimension", "time_step",
-                                   "steps",  "effects",     "nodes",     "particle",
-                                   "chain",  "grid",        "springs",   "pinned",
-                                   "moving", "gravity",     "damping",   "initial_velocity",
-                                   "solid"};
+  static const auto* const keys = new std::vector<std::string>{
+      "name",     "description",     "dimension", "time_step", "steps",  "effects", "nodes",
+      "particle", "chain",           "grid",      "springs",   "pinned", "moving",  "gravity",
+      "damping",  "initial_velocity"};
   return *keys;
 }
 
@@ -381,6 +379,7 @@ class SceneParser {
     const JsonNode root(document, "", source_);
     CheckExtraEffectNames(root);
     std::vector<std::string> allowed = TopLevelKeys();
+    allowed.push_back("solid");  // an elastic solid (problems/solid_loader.h)
     allowed.insert(allowed.end(), options_.extra_effects.begin(), options_.extra_effects.end());
     root.ExpectObject(allowed);
 
