@@ -404,6 +404,39 @@ TEST(SolidScene, InvertedOrDegenerateInitialMeshIsRejected) {
   EXPECT_NE(LoadError(scene).find("element 0 is degenerate"), std::string::npos);
 }
 
+// Replacing any value of the built-in 2D solid scenes with any other JSON
+// value gives a valid scene or one InputError, never another exception.
+TEST(SolidScene, MutatedScenesOnlyRaiseInputError) {
+  const json replacements =
+      json::parse(R"([null, true, "x", -1, 0, 0.5, 2.5, 1e308, [], {}, [0, 1], [1e308, 0]])");
+  SceneLoadOptions options;
+  options.extra_effects = EffectRegistry::Global().UserNames();
+  int errors = 0;
+  for (const std::string name : {"squash_square", "cantilever_2d"}) {
+    const json original = json::parse(BuiltinSceneText(name));
+    const json flat = original.flatten();
+    for (const auto& leaf : flat.items()) {
+      for (json::json_pointer pointer(leaf.key()); !pointer.empty();
+           pointer = pointer.parent_pointer()) {
+        for (const json& replacement : replacements) {
+          json mutated = original;
+          mutated[pointer] = replacement;
+          try {
+            ParseScene(mutated, "mutated.json", options);
+          } catch (const InputError& e) {
+            ++errors;
+            EXPECT_EQ(std::string(e.what()).rfind("mutated.json: ", 0), 0u) << e.what();
+          } catch (const std::exception& e) {
+            ADD_FAILURE() << name << " " << pointer.to_string() << " = " << replacement.dump()
+                          << ": " << e.what();
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(errors, 200);
+}
+
 // Tip deflection of a cantilever (length L, height H, clamped at x = 0) under
 // its weight, linear model, plane strain, quasi-static: Euler-Bernoulli gives
 // w = q L^4 / (8 E' I), q = rho g H, I = H^3 / 12, E' = E / (1 - nu^2).
