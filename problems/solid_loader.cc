@@ -17,10 +17,12 @@ namespace {
 
 using nlohmann::json;
 
-// Largest structured or explicit mesh accepted (nodes), and the smallest
-// Gmsh element size relative to the shape (limits the element count).
+// Largest structured or explicit mesh accepted (cells, nodes), and the
+// smallest Gmsh element size relative to the shape's extent (bounds the
+// element count to a few million: ~1e6 triangles in 2D, ~1e7 tetrahedra in 3D).
 constexpr int64_t kMaxCells = 4000000;
-constexpr double kMinRelativeElementSize = 1e-3;
+constexpr double kMinRelativeElementSize2D = 1e-3;
+constexpr double kMinRelativeElementSize3D = 1e-2;
 
 std::string Number(double v) {
   char buffer[32];
@@ -182,9 +184,11 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
         mesh.Get("radius").Range(limits::kMinLength, limits::kMaxLength, false, false, "m");
     extent = 2.0 * shape.radius;
   }
+  const double min_relative = dim == 2 ? kMinRelativeElementSize2D : kMinRelativeElementSize3D;
   shape.element_size = mesh.Get("element_size")
-                           .Range(kMinRelativeElementSize * extent, extent, false, false,
-                                  "m (between 1/1000 of the shape's extent and the extent)");
+                           .Range(min_relative * extent, extent, false, false,
+                                  "m (between " + Number(min_relative) +
+                                      " times the shape's extent and the extent)");
   try {
     SimplexMesh result = GmshGenerate(shape);
     *description = "Gmsh " + shape.name + ", element size " + Number(shape.element_size);

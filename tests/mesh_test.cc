@@ -171,7 +171,8 @@ TEST(Gmsh, BadFilesGiveOneClearError) {
             std::string::npos)
       << ReadError(quadratic);
   EXPECT_NE(ReadError(mixed).find("mixes element types ("), std::string::npos) << ReadError(mixed);
-  EXPECT_NE(ReadError("$MeshFormat\ngarbage").find(""), std::string::npos);
+  EXPECT_NE(ReadError("$MeshFormat\ngarbage").find("Gmsh could not read"), std::string::npos);
+  EXPECT_NE(ReadError("hello world\n").find("Gmsh could not read"), std::string::npos);
   try {
     GmshRead("/nonexistent/file.msh", 2);
     ADD_FAILURE();
