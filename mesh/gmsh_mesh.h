@@ -15,7 +15,9 @@
 //
 // Gmsh keeps global state: every call here initialises it, works on a fresh
 // model and finalises it, under one process-wide mutex, with its terminal
-// output off (General.Terminal = 0). No other code calls Gmsh.
+// output off (General.Terminal = 0). No other code calls Gmsh. The library
+// (libgmsh, through its C API) is loaded with dlopen on the first call, so
+// programs that never mesh do not pay its 0.28 s load time.
 #pragma once
 
 #include <array>
