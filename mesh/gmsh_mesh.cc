@@ -23,15 +23,15 @@ namespace {
 // times, went from 19 s to 115 s), scenes without a Gmsh mesh included. The
 // function types come from gmshc.h, so a signature mismatch does not compile.
 struct GmshApi {
-#define IPSTEP_GMSH_FUNCTIONS(X)                                                                \
-  X(Free)                                                                                       \
-  X(Initialize) X(Finalize) X(OptionSetNumber) X(Open) X(Write) X(ModelAdd)                     \
-      X(ModelOccAddRectangle) X(ModelOccAddDisk) X(ModelOccAddBox) X(ModelOccAddSphere)         \
-          X(ModelOccSynchronize) X(ModelAddPhysicalGroup) X(ModelSetPhysicalName)               \
-              X(ModelGetBoundary) X(ModelGetBoundingBox) X(ModelMeshGenerate)                   \
-                  X(ModelMeshGetElements) X(ModelMeshGetElementProperties) X(ModelMeshGetNodes) \
-                      X(ModelGetPhysicalGroups) X(ModelGetPhysicalName)                         \
-                          X(ModelMeshGetNodesForPhysicalGroup) X(LoggerGetLastError)
+// clang-format off
+#define IPSTEP_GMSH_FUNCTIONS(X)                                                          \
+  X(Free) X(Initialize) X(Finalize) X(OptionSetNumber) X(Open) X(Write) X(ModelAdd)       \
+  X(ModelOccAddRectangle) X(ModelOccAddDisk) X(ModelOccAddBox) X(ModelOccAddSphere)     \
+  X(ModelOccSynchronize) X(ModelAddPhysicalGroup) X(ModelSetPhysicalName)                \
+  X(ModelGetBoundary) X(ModelGetBoundingBox) X(ModelMeshGenerate) X(ModelMeshGetElements) \
+  X(ModelMeshGetElementProperties) X(ModelMeshGetNodes) X(ModelGetPhysicalGroups)        \
+  X(ModelGetPhysicalName) X(ModelMeshGetNodesForPhysicalGroup) X(LoggerGetLastError)
+// clang-format on
 #define IPSTEP_GMSH_MEMBER(name) decltype(&gmsh##name) name = nullptr;
   IPSTEP_GMSH_FUNCTIONS(IPSTEP_GMSH_MEMBER)
 #undef IPSTEP_GMSH_MEMBER
