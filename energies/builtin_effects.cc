@@ -6,6 +6,7 @@
 
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
+#include "energies/elasticity/elasticity_effect.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
 #include "energies/quartic_spring.h"

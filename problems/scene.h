@@ -5,12 +5,15 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace ipstep {
+
+struct Solid;  // problems/solid.h
 
 enum class SpringModel {
   kHookean,        // k/2 (|d| - L)^2
@@ -70,6 +73,9 @@ struct Scene {
 
   std::vector<Spring> springs;
   Surface surface;
+  // An elastic solid ("solid": mesh and material) whose nodes are the scene's
+  // nodes; its energy is the "elasticity" effect. Null without one.
+  std::shared_ptr<const Solid> solid;
   std::vector<int> pinned;  // node indices held fixed
   std::vector<MovingNode> moving;
 

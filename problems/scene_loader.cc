@@ -21,6 +21,8 @@
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/json_node.h"
+#include "mesh/mesh_boundary.h"
+#include "problems/solid_loader.h"  // "solid": elastic solids
 
 namespace ipstep {
 namespace internal {
@@ -42,7 +44,7 @@ constexpr int64_t kMaxNodes = 1000000;
 constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
 
 constexpr char kOneNodeSource[] =
-    "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\"";
+    "give exactly one of \"nodes\", \"particle\", \"chain\", \"grid\", \"solid\"";
 
 const std::vector<std::string>& BuiltinEffects() { return SceneNativeEffects(); }
 
@@ -226,6 +228,7 @@ class SceneParser {
     const JsonNode root(document, "", source_);
     CheckExtraEffectNames(root);
     std::vector<std::string> allowed = TopLevelKeys();
+    allowed.push_back("solid");  // an elastic solid (problems/solid_loader.h)
     allowed.insert(allowed.end(), options_.extra_effects.begin(), options_.extra_effects.end());
     root.ExpectObject(allowed);
 
@@ -247,7 +250,7 @@ class SceneParser {
 
  private:
   // What made the nodes; node names ("top_left", "last", ...) depend on it.
-  enum class Layout { kExplicit, kParticle, kChain, kGrid };
+  enum class Layout { kExplicit, kParticle, kChain, kGrid, kSolid };
 
   int dim() const { return scene_.dimension; }
   int num_nodes() const { return scene_.num_nodes(); }
@@ -310,7 +313,7 @@ class SceneParser {
 
   void ReadNodes(const JsonNode& root) {
     std::string source_key;
-    for (const char* key : {"nodes", "particle", "chain", "grid"}) {
+    for (const char* key : {"nodes", "particle", "chain", "grid", "solid"}) {
       if (!root.Has(key)) continue;
       if (!source_key.empty()) {
         root.FailAt(key, "conflicts with " + Quoted(source_key) + ": " + kOneNodeSource);
@@ -331,6 +334,8 @@ class SceneParser {
       ReadParticle(generator);
     } else if (source_key == "chain") {
       ReadChain(generator);
+    } else if (source_key == "solid") {
+      ReadSolidNodes(generator);
     } else {
       ReadGrid(generator);
     }
@@ -358,6 +363,28 @@ class SceneParser {
     const std::vector<double> v = velocity.Velocity(dim());
     std::copy(v.begin(), v.end(), scene_.velocities.begin() + dim() * index);
     velocity_paths_[index] = velocity.path();
+  }
+
+  // "solid": an elastic solid's mesh and material (problems/solid_loader.h).
+  void ReadSolidNodes(const JsonNode& solid) {
+    layout_ = Layout::kSolid;
+    RequireEffect(solid, "elasticity");
+    auto data = std::make_shared<Solid>(ReadSolid(solid.value(), dim(), source_, solid.path()));
+    const std::vector<double> masses = LumpedMasses(data->mesh, data->material.density);
+    for (int i = 0; i < data->mesh.num_nodes(); ++i) {
+      const double* x = data->mesh.positions.data() + dim() * i;
+      AddNode(std::vector<double>(x, x + dim()), masses[i]);
+    }
+    // The contact surface is the mesh's boundary: edges (2D) or triangles (3D).
+    scene_.surface.declared = true;
+    for (const std::array<int, 3>& facet : BoundaryFacets(data->mesh)) {
+      if (dim() == 2) {
+        scene_.surface.edges.push_back({facet[0], facet[1]});
+      } else {
+        scene_.surface.triangles.push_back(facet);
+      }
+    }
+    scene_.solid = std::move(data);
   }
 
   // "particle": {"position": [...], "mass": m, "velocity": [...]}.
@@ -784,6 +811,8 @@ class SceneParser {
         names["left_column"].push_back(row * nx_);
         names["right_column"].push_back(row * nx_ + nx_ - 1);
       }
+    } else if (layout_ == Layout::kSolid) {
+      names = scene_.solid->mesh.node_sets;
     } else {
       reference.Fail("node names such as " + Quoted(name) +
                      " need a \"chain\" or \"grid\" generator; use a node index");

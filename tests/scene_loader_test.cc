@@ -96,9 +96,11 @@ std::vector<double> VelocityOf(const Scene& scene, int node) {
 
 TEST(BuiltinScenesTest, NamesAndTexts) {
   EXPECT_EQ(BuiltinSceneNames(),
-            (std::set<std::string>{"cloth", "cloth_box", "cloth_sphere", "drop", "fpu",
-                                   "hanging_square", "impact", "oscillator", "slope",
-                                   "spring_pendulum", "squeeze", "two_squares"}));
+            (std::set<std::string>{
+                "cloth", "cloth_box", "cloth_sphere", "drop", "fpu", "hanging_square", "impact",
+                "oscillator", "slope", "spring_pendulum", "squeeze", "two_squares",
+                // elastic solids (tests/elasticity_test.cc)
+                "ball_drop_3d", "cantilever_2d", "squash_square", "twisted_bar_3d"}));
   SceneLoadOptions options;
   options.extra_effects = DefaultEffects().UserNames();  // contact, friction
   for (const std::string& name : BuiltinSceneNames()) {
@@ -1000,7 +1002,8 @@ TEST(BadInputTest, UnknownBuiltinName) {
   std::string message = InputErrorOf([] { LoadScene("no_such_scene"); });
   EXPECT_NE(message.find("no_such_scene"), std::string::npos) << message;
   EXPECT_NE(message.find("cloth, cloth_box, cloth_sphere, drop, fpu, hanging_square, impact, "
-                         "oscillator, slope, spring_pendulum, squeeze, two_squares"),
+                         "oscillator, slope, spring_pendulum, squash_square, squeeze, "
+                         "twisted_bar_3d, two_squares"),
             std::string::npos)
       << message;
   message = InputErrorOf([] { BuiltinSceneText("no_such_scene"); });

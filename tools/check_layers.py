@@ -2,7 +2,7 @@
 """Checks that every #include "folder/..." in the project goes down the layer
 order (the same order as the libraries in CMakeLists.txt):
 
-  core -> problems -> solver, integrators -> energies -> contact -> sim -> io
+  core -> mesh -> problems -> solver, integrators -> energies -> contact -> sim -> io
        -> apps, bench, tests, examples
 
 A folder may include its own headers and those of the folders it is allowed
@@ -15,13 +15,14 @@ import sys
 
 ALLOWED = {
     "core": {"core"},
-    "problems": {"core", "problems"},
+    "mesh": {"core", "mesh"},
+    "problems": {"core", "mesh", "problems"},
     "solver": {"core", "solver"},
     "integrators": {"core", "integrators"},
-    "energies": {"core", "problems", "energies"},
-    "contact": {"core", "problems", "energies", "contact"},
-    "sim": {"core", "problems", "energies", "contact", "solver", "integrators", "sim"},
-    "io": {"core", "problems", "energies", "contact", "solver", "integrators", "sim", "io"},
+    "energies": {"core", "mesh", "problems", "energies"},
+    "contact": {"core", "mesh", "problems", "energies", "contact"},
+    "sim": {"core", "mesh", "problems", "energies", "contact", "solver", "integrators", "sim"},
+    "io": {"core", "mesh", "problems", "energies", "contact", "solver", "integrators", "sim", "io"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
 

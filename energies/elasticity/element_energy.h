@@ -1,0 +1,189 @@
+// The elastic energy of one linear element (triangle in 2D, tetrahedron in
+// 3D) as a Ceres autodiff functor: e = V Psi(F), V the rest area/volume, F the
+// (constant) deformation gradient
+//   F = Ds Dm^{-1},  Ds = [x1 - x0, ..., xd - x0],  Dm the same at rest,
+// J = det F = det Ds / det Dm (> 0 at rest: meshes are positively oriented).
+//
+// How the energy becomes a residual (e = 1/2 rho(|r|^2), core/term.h):
+//
+// * linear, stvk, fixed_corotated are sums of squares, so r is exact and
+//   smooth, with no loss: with the strain G (eps = sym(F) - I for linear,
+//   E = (F^T F - I)/2 for stvk) and its deviator dev G = G - tr(G)/d I,
+//     mu |G|^2 + lambda/2 tr(G)^2 = mu |dev G|^2 + K/2 tr(G)^2,  K = lambda + 2 mu/d,
+//   so r = [sqrt(2 mu V) dev G_ii (d entries), sqrt(4 mu V) G_ij (i < j),
+//   sqrt(K V) tr G]: d(d+1)/2 + 1 residuals. The deviatoric split keeps every
+//   coefficient positive for every nu in (-1, 1/2) (K > 0 there; lambda itself
+//   is negative for nu < 0). fixed_corotated: r = [sqrt(2 mu V) (F - R)_ij
+//   (d^2 entries), sqrt(lambda V) (J - 1)], which needs lambda >= 0 (nu >= 0;
+//   the scene loader says so). The Gauss-Newton model J^T J of these residuals
+//   is PSD, the Newton model (core/term_hessian.h) adds sum r_k Hess r_k by
+//   central differences; linear's residuals are affine, so J^T J is its exact
+//   Hessian (kGaussNewtonModel).
+// * neo_hookean is not a sum of squares (mu/2 (|F|^2 - d) - mu ln J vanishes
+//   quadratically on the rotations, so sqrt(2 V Psi) has a kink there). It uses
+//   one residual r = sqrt(2 V Psi + c) with a constant c = 1e-4 mu V > 0, smooth as
+//   long as 2 V Psi + c > 0, and the loss rho(s) = s - c (OffsetLoss: rho' = 1,
+//   rho'' = 0, so Ceres's corrector is the identity), which gives back
+//   1/2 rho(r^2) = V Psi exactly. Its Newton model is exact (r J^T = grad e and
+//   J^T J + r Hess r = Hess e); its Gauss-Newton model is only rank one. The
+//   price is precision: e is the difference of r^2 / 2 and c / 2, about
+//   1e-20 mu V absolute, i.e. a relative error of 1e-20 / strain^2 per element
+//   (the loss is evaluated in double even by the extended-precision line-search
+//   energy). (With
+//   nu < 0, lambda < 0 and Psi is unbounded below as J -> 0; the term fails
+//   where 2 V Psi + c <= 0.)
+//
+// Every model fails the evaluation (returns false) where J <= 0: an inverted
+// element is outside the domain, the trust region rejects such a trial point
+// and the step filter (inversion_filter.h) keeps steps away from it.
+#pragma once
+
+#include <cmath>
+
+#include "energies/elasticity/polar_decomposition.h"
+#include "problems/elastic_material.h"
+
+namespace ipstep {
+
+// c / (mu V) of the neo-Hookean residual (below). Smaller keeps more digits of
+// the energy (its absolute round-off is about 1e-16 c); larger keeps r smooth
+// on a wider scale (r = sqrt(2 V Psi + c) bends where V Psi ~ c, i.e. at
+// strains ~ sqrt(c / (mu V)) = 1e-2 here, far above the central-difference
+// step of the Newton model). Measured on cantilever_2d with Newmark and
+// lbfgs: with 1 the line search stalled at 1.0e-5 m/s on 32 of 100 steps, with
+// 1e-4 (fixed_corotated and stvk, exact squares, never stalled).
+constexpr double kNeoHookeanOffset = 1e-4;
+
+template <ElasticModel kModel, int kDim>
+struct ElasticElement {
+  static constexpr int kResiduals = kModel == ElasticModel::kNeoHookean ? 1
+                                    : kModel == ElasticModel::kFixedCorotated
+                                        ? kDim * kDim + 1
+                                        : kDim * (kDim + 1) / 2 + 1;
+  static constexpr bool kGaussNewtonModel = kModel == ElasticModel::kLinear;
+
+  // rest: kDim + 1 node positions (kDim each), positively oriented.
+  ElasticElement(const double* const* rest, double mu, double lambda) : mu(mu), lambda(lambda) {
+    double dm[kDim][kDim];
+    for (int c = 0; c < kDim; ++c) {
+      for (int k = 0; k < kDim; ++k) dm[k][c] = rest[c + 1][k] - rest[0][k];
+    }
+    double det;
+    if constexpr (kDim == 2) {
+      det = dm[0][0] * dm[1][1] - dm[0][1] * dm[1][0];
+      dm_inv[0][0] = dm[1][1] / det;
+      dm_inv[0][1] = -dm[0][1] / det;
+      dm_inv[1][0] = -dm[1][0] / det;
+      dm_inv[1][1] = dm[0][0] / det;
+      volume = 0.5 * det;
+    } else {
+      det = Determinant3(dm);
+      double inv_t[3][3];
+      InverseTranspose3(dm, inv_t);
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) dm_inv[i][j] = inv_t[j][i];
+      }
+      volume = det / 6.0;
+    }
+    offset = kNeoHookeanOffset * mu * volume;
+  }
+
+  template <typename T>
+  bool operator()(const T* x0, const T* x1, const T* x2, T* r) const {
+    const T* x[3] = {x0, x1, x2};
+    return Residuals(x, r);
+  }
+  template <typename T>
+  bool operator()(const T* x0, const T* x1, const T* x2, const T* x3, T* r) const {
+    const T* x[4] = {x0, x1, x2, x3};
+    return Residuals(x, r);
+  }
+
+  // F = Ds Dm^{-1}; returns J = det F.
+  template <typename T>
+  T DeformationGradient(const T* const* x, T F[kDim][kDim]) const {
+    T ds[kDim][kDim];
+    for (int c = 0; c < kDim; ++c) {
+      for (int k = 0; k < kDim; ++k) ds[k][c] = x[c + 1][k] - x[0][k];
+    }
+    for (int i = 0; i < kDim; ++i) {
+      for (int j = 0; j < kDim; ++j) {
+        F[i][j] = T(0.0);
+        for (int k = 0; k < kDim; ++k) F[i][j] += ds[i][k] * dm_inv[k][j];
+      }
+    }
+    if constexpr (kDim == 2) {
+      return F[0][0] * F[1][1] - F[0][1] * F[1][0];
+    } else {
+      return Determinant3(F);
+    }
+  }
+
+  template <typename T>
+  bool Residuals(const T* const* x, T* r) const {
+    using std::log;
+    using std::sqrt;
+    T F[kDim][kDim];
+    const T J = DeformationGradient(x, F);
+    if (!(J > 0.0)) return false;
+    if constexpr (kModel == ElasticModel::kLinear || kModel == ElasticModel::kStvk) {
+      T G[kDim][kDim];
+      for (int i = 0; i < kDim; ++i) {
+        for (int j = 0; j < kDim; ++j) {
+          if constexpr (kModel == ElasticModel::kLinear) {
+            G[i][j] = 0.5 * (F[i][j] + F[j][i]);
+          } else {
+            G[i][j] = T(0.0);
+            for (int k = 0; k < kDim; ++k) G[i][j] += F[k][i] * F[k][j];
+            G[i][j] *= 0.5;
+          }
+          if (i == j) G[i][j] -= 0.5 * (kModel == ElasticModel::kLinear ? 2.0 : 1.0);
+        }
+      }
+      T trace(0.0);
+      for (int i = 0; i < kDim; ++i) trace += G[i][i];
+      const double diagonal = std::sqrt(2.0 * mu * volume);
+      const double off_diagonal = std::sqrt(4.0 * mu * volume);
+      const double bulk = std::sqrt((lambda + 2.0 * mu / kDim) * volume);
+      int n = 0;
+      for (int i = 0; i < kDim; ++i) r[n++] = diagonal * (G[i][i] - trace / double(kDim));
+      for (int i = 0; i < kDim; ++i) {
+        for (int j = i + 1; j < kDim; ++j) r[n++] = off_diagonal * G[i][j];
+      }
+      r[n] = bulk * trace;
+      return true;
+    } else if constexpr (kModel == ElasticModel::kFixedCorotated) {
+      T R[kDim][kDim];
+      if constexpr (kDim == 2) {
+        PolarRotation2(F, R);
+      } else {
+        if (!PolarRotation3(F, R)) return false;
+      }
+      const double shear = std::sqrt(2.0 * mu * volume);
+      for (int i = 0; i < kDim; ++i) {
+        for (int j = 0; j < kDim; ++j) r[kDim * i + j] = shear * (F[i][j] - R[i][j]);
+      }
+      r[kDim * kDim] = std::sqrt(lambda * volume) * (J - 1.0);
+      return true;
+    } else {
+      T norm2(0.0);
+      for (int i = 0; i < kDim; ++i) {
+        for (int j = 0; j < kDim; ++j) norm2 += F[i][j] * F[i][j];
+      }
+      const T log_j = log(J);
+      const T psi = 0.5 * mu * (norm2 - double(kDim)) - mu * log_j + 0.5 * lambda * log_j * log_j;
+      const T s = 2.0 * volume * psi + offset;
+      if (!(s > 0.0)) return false;
+      r[0] = sqrt(s);
+      return true;
+    }
+  }
+
+  double dm_inv[kDim][kDim];
+  double volume = 0.0;
+  double mu = 0.0;
+  double lambda = 0.0;
+  double offset = 0.0;  // c of the neo-Hookean residual
+};
+
+}  // namespace ipstep
