@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "contact/bvh.h"
 #include "contact/collision_mesh.h"
