@@ -1,6 +1,6 @@
 // The "contact" and "friction" effects: strict parsing of their scene
 // parameters (every problem is an InputError naming the file and key), flag
-// overrides, and construction of the contact manager (contact/contact_manager.h).
+// overrides, and construction of the contact filter (contact/contact_filter.h).
 #include "contact/contact_effects.h"
 
 #include <cmath>
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "contact/contact_manager.h"
-#include "contact/contact_overrides.h"
 #include "contact/collision_mesh.h"
+#include "contact/contact_filter.h"
+#include "contact/contact_overrides.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 
@@ -219,26 +219,26 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
   if (overrides.kappa) options.kappa = *overrides.kappa;
 
   CollisionMesh surface = BuildCollisionMesh(scene);
-  auto manager = std::make_unique<ContactManager>(builder.potential(), &builder.state(),
-                                                  std::move(surface), options);
+  auto filter = std::make_unique<ContactFilter>(builder.potential(), &builder.state(),
+                                                std::move(surface), options);
   const std::string penetration =
-      manager->FindPenetration(builder.state().x.data(), builder.state().time);
+      filter->FindPenetration(builder.state().x.data(), builder.state().time);
   if (!penetration.empty()) {
     throw InputError(source, "contact", "the initial state is not free of contact: " + penetration);
   }
-  const std::string summary = manager->Summary();
-  builder.AddStepFilter(std::move(manager));
+  const std::string summary = filter->Summary();
+  builder.AddStepFilter(std::move(filter));
   return summary;
 }
 
 std::string BuildFriction(TermBuilder& builder, const json& parameters) {
   const Scene& scene = builder.scene();
   const std::string& source = scene.source;
-  ContactManager* manager = nullptr;
-  for (const auto& filter : builder.potential()->step_filters()) {
-    if (auto* m = dynamic_cast<ContactManager*>(filter.get())) manager = m;
+  ContactFilter* filter = nullptr;
+  for (const auto& step_filter : builder.potential()->step_filters()) {
+    if (auto* m = dynamic_cast<ContactFilter*>(step_filter.get())) filter = m;
   }
-  if (manager == nullptr) {
+  if (filter == nullptr) {
     throw InputError(source, "effects", "\"friction\" needs \"contact\" listed before it");
   }
   if (parameters.is_null()) {
@@ -258,7 +258,7 @@ std::string BuildFriction(TermBuilder& builder, const json& parameters) {
   const ContactOverrides overrides = CurrentContactOverrides();
   if (overrides.mu) options.mu = *overrides.mu;
   if (overrides.friction_iterations) options.iterations = *overrides.friction_iterations;
-  manager->EnableFriction(options);
+  filter->EnableFriction(options);
   std::ostringstream out;
   out << "friction: mu " << options.mu << ", epsilon_v " << options.epsilon_v << " m/s, "
       << options.iterations << " lag iteration(s) per step";

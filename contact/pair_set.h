@@ -38,6 +38,7 @@ namespace ipstep {
 // every evaluation.
 struct PairSetContext {
   int dimension = 3;
+  int num_coordinates = 0;  // size of a configuration x (dimension x nodes)
   const CollisionMesh* mesh = nullptr;
   const std::vector<Obstacle>* obstacles = nullptr;
   // Per entry of mesh->nodes: whether that node is free (pairs whose nodes

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "contact/contact_manager.h"
+#include "contact/contact_filter.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
 #include "core/input_error.h"
@@ -39,9 +39,9 @@ ProbeRecord g_probe;
 
 class GapProbe : public StepFilter {
  public:
-  explicit GapProbe(const ContactManager* manager) : manager_(manager) {}
+  explicit GapProbe(const ContactFilter* filter) : filter_(filter) {}
   void OnAccepted(const double* x) override {
-    const double gap = manager_->MinDistance(x, std::numeric_limits<double>::infinity());
+    const double gap = filter_->MinDistance(x, std::numeric_limits<double>::infinity());
     if (std::isnan(gap)) g_probe.nan = true;
     g_probe.min_gap = std::min(g_probe.min_gap, gap);
     ++g_probe.accepted;
@@ -51,22 +51,23 @@ class GapProbe : public StepFilter {
   bool IsFeasible(const double*) const override { return true; }
 
  private:
-  const ContactManager* manager_;
+  const ContactFilter* filter_;
 };
 
 void RegisterProbe() {
   static const bool registered = [] {
-    EffectRegistry::Global().Register(
-        "gap_probe", "test: records gaps at accepted iterates",
-        [](TermBuilder& builder, const json&) {
-          const ContactManager* manager = nullptr;
-          for (const auto& f : builder.potential()->step_filters()) {
-            if (auto* m = dynamic_cast<const ContactManager*>(f.get())) manager = m;
-          }
-          if (manager == nullptr) throw std::logic_error("gap_probe needs contact");
-          builder.AddStepFilter(std::make_unique<GapProbe>(manager));
-          return std::string("gap probe");
-        });
+    EffectRegistry::Global().Register("gap_probe", "test: records gaps at accepted iterates",
+                                      [](TermBuilder& builder, const json&) {
+                                        const ContactFilter* filter = nullptr;
+                                        for (const auto& f : builder.potential()->step_filters()) {
+                                          if (auto* m = dynamic_cast<const ContactFilter*>(f.get()))
+                                            filter = m;
+                                        }
+                                        if (filter == nullptr)
+                                          throw std::logic_error("gap_probe needs contact");
+                                        builder.AddStepFilter(std::make_unique<GapProbe>(filter));
+                                        return std::string("gap probe");
+                                      });
     return true;
   }();
   (void)registered;
@@ -86,11 +87,11 @@ Scene LoadWithProbe(const std::string& name_or_json, bool is_json = false) {
   return scene;
 }
 
-const ContactManager& Manager(const Simulation& sim) {
+const ContactFilter& Filter(const Simulation& sim) {
   for (const auto& f : sim.potential().step_filters()) {
-    if (auto* m = dynamic_cast<const ContactManager*>(f.get())) return *m;
+    if (auto* m = dynamic_cast<const ContactFilter*>(f.get())) return *m;
   }
-  throw std::logic_error("no contact manager");
+  throw std::logic_error("no contact filter");
 }
 
 struct SceneCase {
@@ -116,7 +117,7 @@ TEST_P(ContactScenes, NoPenetrationAtAnyAcceptedIterate) {
   options.optimizer.max_iterations = c.optimizer == "newton" ? 500 : 20000;
   g_probe = ProbeRecord{};
   Simulation sim(scene, options);
-  const ContactManager& manager = Manager(sim);
+  const ContactFilter& filter = Filter(sim);
   int contact_steps = 0;
   for (int step = 0; step < c.steps; ++step) {
     const StepReport r = sim.Step();
@@ -129,7 +130,7 @@ TEST_P(ContactScenes, NoPenetrationAtAnyAcceptedIterate) {
       EXPECT_GT(r.diagnostics[0], 0.0);
       ++contact_steps;
     }
-    EXPECT_TRUE(manager.FindPenetration(sim.state().x.data(), sim.state().time).empty());
+    EXPECT_TRUE(filter.FindPenetration(sim.state().x.data(), sim.state().time).empty());
   }
   EXPECT_GT(contact_steps, 0) << "the run never reached contact";
   EXPECT_GT(g_probe.accepted, 0);
@@ -223,7 +224,7 @@ TEST(ContactTunnelling, FastParticleIsStoppedByAnEdge) {
       SimulationOptions options = testing::Options(integrator, optimizer, 0.01, 1e-6);
       options.optimizer.max_iterations = 50000;
       Simulation sim(scene, options);
-      ASSERT_EQ(Manager(sim).surface().edges.size(), 1u);
+      ASSERT_EQ(Filter(sim).mesh().edges.size(), 1u);
       for (int step = 0; step < 5; ++step) {
         const StepReport r = sim.Step();
         EXPECT_LT(sim.state().x[4], 0.0) << optimizer << " " << integrator << " step " << step;
@@ -312,7 +313,7 @@ TEST(ContactNewmark, ClothSphereDrapesWithoutEnergyGrowth) {
                                << " " << r.residual;
       double barrier = 0.0;
       ASSERT_TRUE(sim.potential().EvaluateUnweighted(
-          [](const Term& t) { return t.family == std::string(ContactManager::kContactFamily); },
+          [](const Term& t) { return t.family == std::string(ContactFilter::kContactFamily); },
           sim.state().x.data(), &barrier, gradient.data()));
       EXPECT_LE(r.energies.total() - barrier, initial * 1.001)
           << "gamma " << c.gamma << " step " << r.step;
@@ -478,7 +479,7 @@ TEST(ContactEdges, ClothSpringsStayOutsideTheSphere) {
     Scene scene = LoadWithProbe("cloth_sphere");
     g_probe = ProbeRecord{};
     Simulation sim(scene, testing::Options(integrator, "newton", 0, 1e-5));
-    const CollisionMesh& surface = Manager(sim).surface();
+    const CollisionMesh& surface = Filter(sim).mesh();
     ASSERT_GT(surface.edges.size(), 300u);  // 9*10*2 structural + 81*2 shear
     double closest = std::numeric_limits<double>::infinity();
     int contact_steps = 0;
@@ -666,7 +667,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
     Scene loaded = LoadWithProbe(scene.dump(), true);
     g_probe = ProbeRecord{};
     Simulation sim(loaded, testing::Options(integrator, "newton", 0, 1e-5));
-    const CollisionMesh& surface = Manager(sim).surface();
+    const CollisionMesh& surface = Filter(sim).mesh();
     ASSERT_EQ(surface.faces.size(), 25u * 4u);
     // At the start no spring passes within R: only the faces can hold it.
     double spring_clearance = std::numeric_limits<double>::infinity();
@@ -686,7 +687,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
       const double d = ClosestFace(surface, sim.state().x.data(), Eigen::Vector3d::Zero());
       closest = std::min(closest, d);
       EXPECT_GT(d, radius) << integrator << " step " << r.step;
-      EXPECT_TRUE(Manager(sim).FindPenetration(sim.state().x.data(), sim.state().time).empty());
+      EXPECT_TRUE(Filter(sim).FindPenetration(sim.state().x.data(), sim.state().time).empty());
       contact_steps += !std::isnan(r.diagnostics[0]);
     }
     EXPECT_GT(contact_steps, 20) << integrator;
@@ -780,8 +781,8 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
     SimulationOptions options = testing::Options(c.integrator, c.optimizer, 0, 1e-5);
     options.optimizer.max_iterations = std::string(c.optimizer) == "newton" ? 500 : 20000;
     Simulation sim(loaded, options);
-    const ContactManager& manager = Manager(sim);
-    const Obstacle& box = manager.obstacles()[0];
+    const ContactFilter& filter = Filter(sim);
+    const Obstacle& box = filter.obstacles()[0];
     double closest = std::numeric_limits<double>::infinity();
     int contact_steps = 0;
     for (int step = 0; step < c.steps; ++step) {
@@ -789,9 +790,9 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
       EXPECT_TRUE(r.converged) << c.integrator << " " << c.optimizer << " step " << r.step << " "
                                << r.status;
       const double* x = sim.state().x.data();
-      EXPECT_EQ(BoxConflict(manager.surface(), x, box, &closest), "")
+      EXPECT_EQ(BoxConflict(filter.mesh(), x, box, &closest), "")
           << c.integrator << " " << c.optimizer << " step " << r.step;
-      EXPECT_EQ(manager.FindPenetration(x, sim.state().time), "");
+      EXPECT_EQ(filter.FindPenetration(x, sim.state().time), "");
       contact_steps += !std::isnan(r.diagnostics[0]);
     }
     EXPECT_GT(contact_steps, 10) << c.integrator << " " << c.optimizer;

@@ -3,7 +3,7 @@
 // point_edge.h), case by case and region by region, at random well-conditioned
 // configurations, static and moving obstacles, 2D and 3D; the gap terms'
 // analytic curvature against the Newton model built from finite differences
-// of their Jacobians (core/term_hessian.h); and the contact manager's terms
+// of their Jacobians (core/term_hessian.h); and the contact filter's terms
 // carrying it.
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,7 @@
 #include <Eigen/Geometry>
 
 #include "contact/barrier.h"
-#include "contact/contact_manager.h"
+#include "contact/contact_filter.h"
 #include "contact/contact_terms.h"
 #include "contact/distance_hessian.h"
 #include "contact/obstacle.h"
@@ -767,9 +767,9 @@ TEST(GapCurvature, InactiveIsZeroAndInfeasibleFails) {
   EXPECT_FALSE(gap.Curvature(x, &c, curvature));
 }
 
-// Every gap term the contact manager builds carries its second-order model:
+// Every gap term the contact filter builds carries its second-order model:
 // analytic curvature, or Gauss-Newton for plane gaps (affine distance).
-TEST(GapCurvature, ContactManagerTermsCarryCurvature) {
+TEST(GapCurvature, ContactFilterTermsCarryCurvature) {
   // Term types: 0 plane point, 1 other point, 2 edge, 3 face, 4 box edge,
   // 5 2D point-edge; the scenes and the types each one builds.
   const std::pair<const char*, std::vector<int>> scenes[] = {
@@ -788,7 +788,7 @@ TEST(GapCurvature, ContactManagerTermsCarryCurvature) {
     for (int step = 0; step < sim.steps() && !all_seen(); ++step) {
       sim.Step();
       for (const Term& term : sim.potential().terms()) {
-        if (term.family != ContactManager::kContactFamily) continue;
+        if (term.family != ContactFilter::kContactFamily) continue;
         const ceres::CostFunction* cost = term.cost.get();
         if (dynamic_cast<const PointObstacleGap*>(cost) != nullptr) {
           // Plane gaps (the only affine distance) are Gauss-Newton models.

@@ -14,10 +14,10 @@
 
 namespace ipstep {
 
-EdgeEdgePairs::EdgeEdgePairs(const PairSetContext& context, bool self_contact)
+EdgeEdgePairs::EdgeEdgePairs(const PairSetContext& context, const double* rest)
     : context_(context), geometry_(context.mesh) {
-  active_ = self_contact && context.dimension == 3 && !context.mesh->faces.empty() &&
-            !context.mesh->edges.empty();
+  active_ = context.dimension == 3 && !context.mesh->faces.empty() && !context.mesh->edges.empty();
+  if (rest != nullptr) SetRestPositions(rest);
 }
 
 void EdgeEdgePairs::SetRestPositions(const double* x) {

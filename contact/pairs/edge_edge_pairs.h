@@ -7,9 +7,9 @@
 // m(c) B(d) for nearly parallel edges (contact/edge_edge_mollifier.h) as an
 // effective gap with the BarrierLoss; weight the first edge's weight (pairs
 // are stored with e < f; both edges of a grid have the same weight). The
-// mollifier's threshold uses the rest lengths: the positions given to
-// SetRestPositions, or else those of the first Extend (PairSetContext has no
-// rest positions; the scene's initial positions are its rest state).
+// mollifier's threshold uses the rest lengths: the positions given to the
+// constructor or SetRestPositions (the filter passes the scene's initial
+// positions), or else those of the first Extend.
 // Candidates, time of impact, checks: as PointTrianglePairs (additive CCD of
 // the segment-segment distance, contact/self_ccd.h). Friction: the relative
 // velocity of the closest points (1 - s) a0 + s a1 - (1 - t) b0 - t b1 at the
@@ -30,7 +30,10 @@ namespace ipstep {
 
 class EdgeEdgePairs : public PairSet {
  public:
-  explicit EdgeEdgePairs(const PairSetContext& context, bool self_contact = true);
+  // `rest`: rest positions (a full configuration) for the mollifier, or null
+  // (then those of the first Extend). Registered only when the scene turns
+  // self-contact on (contact/pair_kinds.cc).
+  explicit EdgeEdgePairs(const PairSetContext& context, const double* rest = nullptr);
 
   const char* name() const override { return "edge-edge"; }
   bool active() const { return active_; }

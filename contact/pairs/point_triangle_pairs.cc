@@ -20,9 +20,9 @@ const std::array<int, 1> Single(int node) { return {node}; }
 
 }  // namespace
 
-PointTrianglePairs::PointTrianglePairs(const PairSetContext& context, bool self_contact)
+PointTrianglePairs::PointTrianglePairs(const PairSetContext& context)
     : context_(context), geometry_(context.mesh) {
-  active_ = self_contact && context.dimension == 3 && !context.mesh->faces.empty();
+  active_ = context.dimension == 3 && !context.mesh->faces.empty();
 }
 
 double PointTrianglePairs::Distance(const double* x, const Pair& pair, Eigen::Vector3d* grad,

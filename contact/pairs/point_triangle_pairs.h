@@ -31,9 +31,9 @@ namespace ipstep {
 
 class PointTrianglePairs : public PairSet {
  public:
-  // `self_contact`: whether the scene turned self-contact on (the pairs are
-  // active only then).
-  explicit PointTrianglePairs(const PairSetContext& context, bool self_contact = true);
+  // Registered only when the scene turns self-contact on
+  // (contact/pair_kinds.cc).
+  explicit PointTrianglePairs(const PairSetContext& context);
 
   const char* name() const override { return "point-triangle"; }
   bool active() const { return active_; }

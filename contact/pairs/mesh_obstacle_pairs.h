@@ -1,10 +1,6 @@
-// 3D contact pairs of the cloth's faces against the obstacles' face features
-// (sphere centre, 3D box corners; Obstacle::FaceDistance) and of the cloth's
-// contact edges against 3D box edges (Obstacle::BoxEdgeDistance), for the
-// contact manager (contact/contact_manager.h), which uses them wherever it uses
-// its edge-obstacle pairs: barrier terms, continuous collision detection, the
-// static and after-step checks, min_distance / active_contacts and the adaptive
-// kappa's balance.
+// Pair kind (3D): the collision mesh's faces against the obstacles' face
+// features (sphere centre, 3D box corners; Obstacle::FaceDistance) and its
+// edges against 3D box edges (Obstacle::BoxEdgeDistance).
 //
 // Barrier (FaceObstacleGap, EdgeBoxEdgeGap in contact/contact_terms.h): weight
 // the face's / edge's weight (contact/collision_mesh.h). Against a sphere's
@@ -26,31 +22,48 @@
 // point-feature distance, before any exact distance.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "contact/collision_mesh.h"
-#include "contact/obstacle.h"
-#include "core/incremental_potential.h"
+#include "contact/pair_set.h"
 
 namespace ipstep {
 
-class MeshObstaclePairs {
+class MeshObstaclePairs : public PairSet {
  public:
-  // `surface` and `obstacles` must outlive this; slot_free: per entry of
-  // surface->nodes, whether the node is free (faces and edges whose nodes are
-  // all pinned get no pairs). Empty unless some obstacle has face features or
-  // box edges (3D spheres and boxes).
-  MeshObstaclePairs(const CollisionMesh* surface, const std::vector<Obstacle>* obstacles,
-                    std::vector<bool> slot_free, double d_hat, double margin);
+  // Faces and edges whose nodes are all fixed get no pairs. Empty unless some
+  // obstacle has face features or box edges (3D spheres and boxes).
+  explicit MeshObstaclePairs(const PairSetContext& context);
 
+  const char* name() const override { return "mesh-obstacle"; }
   bool active() const { return active_; }
   bool empty() const { return face_pairs_.empty() && box_edge_pairs_.empty(); }
-  size_t size() const { return face_pairs_.size() + box_edge_pairs_.size(); }
-  void Clear();
+  size_t size() const override { return face_pairs_.size() + box_edge_pairs_.size(); }
+  void Clear() override;
+  bool ChangedSinceClear() const override {
+    return face_pairs_ != previous_faces_ || box_edge_pairs_ != previous_box_edges_;
+  }
+  bool Extend(const CandidateRegion& region) override {
+    return Extend(region.start, *c_.time, *region.reach, *region.travel);
+  }
+  bool Missing(const double* x) const override { return Missing(x, *c_.time); }
+  double Lag(const double* x) override { return Lag(x, *c_.time); }
+  void SaveLags() override { saved_lag_ = face_lag_; }
+  void RestoreLags() override { face_lag_ = saved_lag_; }
+  bool TermsReadLags() const override { return !empty(); }
+  void AddBarrierTerms(IncrementalPotential* potential) const override {
+    AddBarrierTerms(potential, c_.barrier_family, c_.time, c_.kappa);
+  }
+  void Near(const double* x, double t, double reach, double* min_distance,
+            int* count) const override {
+    *min_distance = std::min(*min_distance, MinDistance(x, t, reach));
+    *count += CountWithin(x, t, reach);
+  }
 
+  // The PairSet operations above in terms of an explicit obstacle time t.
   // Adds the pairs of primitives with a free node whose distance at x (obstacle
   // time t) is below d_hat + reach + travel[obstacle], reach the largest of the
   // primitive's nodes' `reach` (per slot); new pairs are lagged at x. True if
@@ -64,9 +77,6 @@ class MeshObstaclePairs {
   // relative excess (d_lagged - d) / d of the previous lag over those pairs
   // within d_hat.
   double Lag(const double* x, double t);
-  using Lags = std::vector<Eigen::Vector3d>;
-  Lags SavedLags() const { return face_lag_; }
-  void RestoreLags(const Lags& lags) { face_lag_ = lags; }
 
   // Barrier terms of every pair (family `family`, kind kPotential, impulsive),
   // reading the obstacle time and kappa through the pointers. The terms point
@@ -77,18 +87,19 @@ class MeshObstaclePairs {
   // First fraction of the path from a (obstacle time t_a) to b (t_b) at which
   // a face or an edge reaches its collision-detection goal (conservative, see
   // Obstacle::FaceTimeOfImpact); Obstacle::kNoImpact if none.
-  double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const;
+  double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
   // Empty if every face and edge keeps more than `margin` from the features at
   // x, time t, no cloth edge passes through a 3D box and no box edge through a
   // face; otherwise a description of the first conflict.
-  std::string FindPenetration(const double* x, double t) const;
+  std::string FindPenetration(const double* x, double t) const override;
   // Smallest distance / number of face-feature and edge-box-edge combinations
   // (all, pinned or not) closer than `reach`.
   double MinDistance(const double* x, double t, double reach) const;
   int CountWithin(const double* x, double t, double reach) const;
   // Adds scale * w B'(d) grad d of every combination within d_hat (true
   // distance) to g (kappa = 1), for the adaptive kappa's balance.
-  void AddBarrierGradient(const double* x, double t, double scale, Eigen::VectorXd* g) const;
+  void AddBarrierGradient(const double* x, double t, double scale,
+                          Eigen::VectorXd* g) const override;
 
  private:
   struct FacePair {
@@ -134,6 +145,7 @@ class MeshObstaclePairs {
                    const Cutoff& edge_cutoff, const std::vector<double>* travel,
                    const OnFace& on_face, const OnEdge& on_edge) const;
 
+  PairSetContext c_;
   const CollisionMesh* surface_;
   const std::vector<Obstacle>* obstacles_;
   std::vector<bool> slot_free_;
@@ -146,6 +158,9 @@ class MeshObstaclePairs {
   std::vector<FacePair> face_pairs_;         // sorted
   std::vector<Eigen::Vector3d> face_lag_;    // barycentric weights per face pair
   std::vector<BoxEdgePair> box_edge_pairs_;  // sorted
+  std::vector<FacePair> previous_faces_;     // emptied by Clear
+  std::vector<BoxEdgePair> previous_box_edges_;
+  std::vector<Eigen::Vector3d> saved_lag_;
 };
 
 }  // namespace ipstep

@@ -1,4 +1,4 @@
-#include "contact/mesh_obstacle_pairs.h"
+#include "contact/pairs/mesh_obstacle_pairs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -67,14 +67,13 @@ bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs) {
 
 }  // namespace
 
-MeshObstaclePairs::MeshObstaclePairs(const CollisionMesh* surface,
-                                     const std::vector<Obstacle>* obstacles,
-                                     std::vector<bool> slot_free, double d_hat, double margin)
-    : surface_(surface),
-      obstacles_(obstacles),
-      slot_free_(std::move(slot_free)),
-      d_hat_(d_hat),
-      margin_(margin) {
+MeshObstaclePairs::MeshObstaclePairs(const PairSetContext& context)
+    : c_(context),
+      surface_(context.mesh),
+      obstacles_(context.obstacles),
+      slot_free_(*context.node_free),
+      d_hat_(context.d_hat),
+      margin_(context.margin) {
   for (const Obstacle& o : *obstacles_) {
     active_ |= (o.NumFaceFeatures() > 0 && !surface_->faces.empty()) ||
                (o.NumBoxEdges() > 0 && !surface_->edges.empty());
@@ -89,6 +88,8 @@ MeshObstaclePairs::MeshObstaclePairs(const CollisionMesh* surface,
 }
 
 void MeshObstaclePairs::Clear() {
+  previous_faces_ = std::move(face_pairs_);
+  previous_box_edges_ = std::move(box_edge_pairs_);
   face_pairs_.clear();
   face_lag_.clear();
   box_edge_pairs_.clear();

@@ -1,0 +1,143 @@
+// The contact step filter (core/step_filter.h): keeps every iterate free of
+// penetration and tunnelling, maintains the barrier terms of the pairs in
+// reach, the barrier stiffness (contact/adaptive_kappa.h) and the lagged
+// friction terms, and reports min_distance / active_contacts. The pairs are
+// kept by pair kinds (contact/pair_set.h, registered in contact/pair_kinds.cc);
+// the filter only drives them. A pair's barrier term (family "contact") is
+//   w_U kappa w_i B(d)  (contact/barrier.h)
+// with w_i the weight of the pair's node, edge or face (contact/collision_mesh.h);
+// its friction term (family "friction", contact/friction.h) is
+//   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged.
+//
+// Within a step:
+//  * BeginStep(x_n) collects the candidate pairs: those that can come within
+//    d_hat during the step (distance at x_n below d_hat plus twice the
+//    predictor's displacement plus the obstacle's travel). Terms of pairs out of
+//    reach are exactly zero, so a generous set costs little.
+//  * RefreshTerms(x) after each solve adds every pair within d_hat of the
+//    solution that the set missed, and asks for another solve. The set only
+//    grows within a step, so this terminates.
+//  * Moving obstacles: the solve needs a start free of penetration at the
+//    obstacles' positions. When an obstacle would sweep into x_n during the
+//    step, its time is advanced in stages: each solve uses the obstacles at a
+//    time tau, and RefreshTerms moves tau towards t_{n+1} as far as continuous
+//    collision detection against the current solution allows (0.8 of the way
+//    to impact), then solves again. The step is feasible only once tau = t_{n+1}.
+//  * Lagged closest points (edges and faces against sphere centres) are
+//    re-lagged and the step solved again while a lag is more than 1 % farther
+//    than the true closest point, at most 3 times per step.
+//  * Friction: normal forces and tangent bases are lagged at x_n; with
+//    friction iterations > 1 they are re-lagged at the solution and the step is
+//    solved again, up to that many lags in total.
+// IsStepValid and MaxStepSize are one time-of-impact sweep over every kind.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contact/adaptive_kappa.h"
+#include "contact/collision_mesh.h"
+#include "contact/contact_options.h"
+#include "contact/pair_set.h"
+#include "core/incremental_potential.h"
+#include "core/state.h"
+#include "core/step_filter.h"
+
+namespace ipstep {
+
+class ContactFilter : public StepFilter {
+ public:
+  static constexpr char kContactFamily[] = "contact";
+  static constexpr char kFrictionFamily[] = "friction";
+
+  // `potential` and `state` must outlive the filter (the simulation owns all).
+  ContactFilter(IncrementalPotential* potential, const State* state, CollisionMesh mesh,
+                ContactOptions options);
+
+  // Empty if positions x are free of penetration (gaps > 0) at time t;
+  // otherwise a description of the first penetrating pair.
+  std::string FindPenetration(const double* x, double t) const;
+
+  void EnableFriction(const FrictionOptions& options);
+  bool has_friction() const { return friction_enabled_; }
+
+  // StepFilter.
+  void OnAccepted(const double* x) override;
+  bool IsStepValid(const double* x) const override;
+  double MaxStepSize(const double* from, const double* to) const override;
+  bool IsFeasible(const double* x) const override;
+  void BeginStep(const double* x_n) override;
+  bool RefreshTerms(const double* x) override;
+  std::vector<std::string> DiagnosticNames() const override;
+  std::vector<double> Diagnostics(const double* x) const override;
+  // What this filter put into the barrier energy over the step: at BeginStep,
+  // the change of U_b(x_n, t_n) by the step's stiffness and pairs (adaptive
+  // kappa, pairs coming into reach); then the moving obstacles' work on the
+  // body, the integral of dU_b/dt (the barrier energy's rate at fixed
+  // positions, central differences in the obstacle time) along the step by
+  // the trapezoidal rule between (x_start, t_n) and (x_end, t_{n+1}) (one end
+  // if the other cannot be evaluated).
+  double PrescribedWork(const double* x_start, const double* x_end) override;
+  // U_b (the barrier terms' energy) at positions x and obstacle time t.
+  bool BarrierEnergy(const double* x, double t, double* energy);
+
+  // Smallest gap over combinations closer than `reach` at the current obstacle
+  // time (infinity if none), and their number.
+  double MinDistance(const double* x, double reach) const;
+  int CountPairsWithin(const double* x, double reach) const;
+
+  double kappa() const { return kappa_.value(); }
+  double kappa_min() const { return kappa_.min(); }
+  bool adaptive_kappa() const { return kappa_.adaptive(); }
+  double d_hat() const { return options_.d_hat; }
+  double obstacle_time() const { return tau_; }
+  const CollisionMesh& mesh() const { return mesh_; }
+  const std::vector<Obstacle>& obstacles() const { return options_.obstacles; }
+  const std::vector<std::unique_ptr<PairSet>>& pair_sets() const { return sets_; }
+  int num_barrier_pairs() const;
+  int num_friction_contacts() const { return num_friction_contacts_; }
+  std::string Summary() const;
+
+ private:
+  // Smallest TimeOfImpact of the kinds (PairSet::kNoImpact if none).
+  double Sweep(const double* a, const double* b, double t_a, double t_b) const;
+  bool ExtendPairs(const CandidateRegion& region);
+  std::vector<double> ObstacleTravel() const;
+  void RebuildBarrierTerms();
+  double Lag(const double* x);
+  void LagFriction(const double* x, double t);
+  void RebuildFrictionTerms();
+  // Moves the obstacle time towards t_next as far as x allows.
+  void AdvanceObstacles(const double* x);
+  void UpdateKappa(const double* x_n);
+
+  IncrementalPotential* potential_;
+  const State* state_;
+  StepContext* context_;
+  int dim_;
+  CollisionMesh mesh_;
+  ContactOptions options_;
+  std::vector<bool> node_free_;  // per entry of mesh_.nodes
+  double margin_;                // smallest admissible gap
+  bool has_moving_obstacles_ = false;
+  AdaptiveKappa kappa_;
+
+  double t_n_ = 0.0;
+  double t_next_ = 0.0;
+  double tau_ = 0.0;
+  double begin_energy_input_ = 0.0;  // PrescribedWork
+  Eigen::VectorXd accepted_;
+  int lags_ = 0;  // closest-point re-lags this step
+
+  std::vector<std::unique_ptr<PairSet>> sets_;
+
+  bool friction_enabled_ = false;
+  FrictionOptions friction_;
+  int friction_lags_ = 0;  // friction lags this step
+  int num_friction_contacts_ = 0;
+};
+
+}  // namespace ipstep

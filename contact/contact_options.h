@@ -1,0 +1,23 @@
+// Options of the contact filter (contact/contact_filter.h).
+#pragma once
+
+#include <vector>
+
+#include "contact/obstacle.h"
+
+namespace ipstep {
+
+struct ContactOptions {
+  double d_hat = 1e-3;  // barrier activation distance [m]
+  double kappa = 0.0;   // barrier stiffness: > 0 fixed; 0 adaptive (contact/adaptive_kappa.h)
+  bool self_contact = false;
+  std::vector<Obstacle> obstacles;
+};
+
+struct FrictionOptions {
+  double mu = 0.0;
+  double epsilon_v = 1e-3;  // [m/s]
+  int iterations = 1;       // lags per step (1: lagged at the step start only)
+};
+
+}  // namespace ipstep

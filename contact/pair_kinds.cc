@@ -1,0 +1,26 @@
+#include "contact/pair_kinds.h"
+
+#include "contact/pairs/edge_edge_pairs.h"
+#include "contact/pairs/edge_obstacle_pairs.h"
+#include "contact/pairs/mesh_obstacle_pairs.h"
+#include "contact/pairs/node_obstacle_pairs.h"
+#include "contact/pairs/point_edge_pairs.h"
+#include "contact/pairs/point_triangle_pairs.h"
+
+namespace ipstep {
+
+std::vector<std::unique_ptr<PairSet>> MakePairSets(const PairSetContext& context, bool self_contact,
+                                                   const double* initial) {
+  std::vector<std::unique_ptr<PairSet>> sets;
+  sets.push_back(std::make_unique<NodeObstaclePairs>(context));
+  sets.push_back(std::make_unique<EdgeObstaclePairs>(context));
+  sets.push_back(std::make_unique<MeshObstaclePairs>(context));
+  if (self_contact) {
+    if (context.dimension == 2) sets.push_back(std::make_unique<PointEdgePairs>(context, initial));
+    if (context.dimension == 3) sets.push_back(std::make_unique<PointTrianglePairs>(context));
+    if (context.dimension == 3) sets.push_back(std::make_unique<EdgeEdgePairs>(context, initial));
+  }
+  return sets;
+}
+
+}  // namespace ipstep

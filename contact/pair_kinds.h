@@ -1,0 +1,18 @@
+// The registry of pair kinds the contact filter is made of
+// (contact/pair_set.h), in the order their terms are built.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "contact/pair_set.h"
+
+namespace ipstep {
+
+// The pair sets for `context`: one per kind that applies (obstacle kinds
+// always; self-contact kinds when `self_contact`). `initial`: the initial
+// positions (broad-phase cell sizes).
+std::vector<std::unique_ptr<PairSet>> MakePairSets(const PairSetContext& context, bool self_contact,
+                                                   const double* initial);
+
+}  // namespace ipstep

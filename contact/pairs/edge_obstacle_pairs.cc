@@ -1,0 +1,225 @@
+#include "contact/pairs/edge_obstacle_pairs.h"
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+#include <utility>
+
+#include "contact/barrier.h"
+#include "contact/contact_terms.h"
+#include "contact/point_edge.h"
+
+namespace ipstep {
+
+EdgeObstaclePairs::EdgeObstaclePairs(const PairSetContext& context) : c_(context) {
+  const std::vector<int>& nodes = c_.mesh->nodes;
+  for (const auto& e : c_.mesh->edges) {
+    std::array<int, 2> slots{};
+    for (int end = 0; end < 2; ++end) {
+      slots[end] =
+          static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), e[end]) - nodes.begin());
+    }
+    edge_slots_.push_back(slots);
+  }
+}
+
+double EdgeObstaclePairs::Distance(const double* x, double t, const Pair& p,
+                                   Eigen::Vector3d* grad_a, Eigen::Vector3d* grad_b) const {
+  return (*c_.obstacles)[p.obstacle].EdgeDistance(p.feature, End(x, p.edge, 0), End(x, p.edge, 1),
+                                                  t, grad_a, grad_b);
+}
+
+std::vector<EdgeObstaclePairs::Pair> EdgeObstaclePairs::All(bool free_only) const {
+  std::vector<Pair> pairs;
+  const std::vector<bool>& node_free = *c_.node_free;
+  for (size_t e = 0; e < c_.mesh->edges.size(); ++e) {
+    if (free_only && !node_free[edge_slots_[e][0]] && !node_free[edge_slots_[e][1]]) continue;
+    for (size_t o = 0; o < c_.obstacles->size(); ++o) {
+      const int features = (*c_.obstacles)[o].NumEdgeFeatures();
+      for (int f = 0; f < features; ++f) {
+        pairs.push_back(Pair{static_cast<int>(e), static_cast<int>(o), f});
+      }
+    }
+  }
+  return pairs;
+}
+
+bool EdgeObstaclePairs::Extend(const CandidateRegion& region) {
+  bool added = false;
+  const std::vector<double>& reach = *region.reach;
+  for (const Pair& pair : All(true)) {
+    const auto& slots = edge_slots_[pair.edge];
+    const double d = Distance(region.start, *c_.time, pair);
+    if (!(d < c_.d_hat + std::max(reach[slots[0]], reach[slots[1]]) +
+                  (*region.travel)[pair.obstacle])) {
+      continue;
+    }
+    if (pairs_.Contains(pair)) continue;
+    double alpha = 0.0;
+    PointSegmentDistance((*c_.obstacles)[pair.obstacle].EdgeFeature(pair.feature, *c_.time),
+                         End(region.start, pair.edge, 0), End(region.start, pair.edge, 1), &alpha);
+    added |= pairs_.Insert(pair, alpha);
+  }
+  return added;
+}
+
+bool EdgeObstaclePairs::Missing(const double* x) const {
+  for (const Pair& p : All(true)) {
+    if (Distance(x, *c_.time, p) < c_.d_hat && !pairs_.Contains(p)) return true;
+  }
+  return false;
+}
+
+double EdgeObstaclePairs::TimeOfImpact(const double* a, const double* b, double t_a,
+                                       double t_b) const {
+  double first = kNoImpact;
+  for (const Obstacle& obstacle : *c_.obstacles) {
+    const int features = obstacle.NumEdgeFeatures();
+    if (features == 0) continue;
+    for (size_t e = 0; e < c_.mesh->edges.size(); ++e) {
+      const int edge = static_cast<int>(e);
+      const Eigen::Vector3d a0 = End(a, edge, 0), a1 = End(b, edge, 0);
+      const Eigen::Vector3d b0 = End(a, edge, 1), b1 = End(b, edge, 1);
+      for (int f = 0; f < features; ++f) {
+        first = std::min(first, obstacle.EdgeTimeOfImpact(f, a0, a1, b0, b1, t_a, t_b, c_.margin));
+        if (first == 0.0) return 0.0;
+      }
+    }
+  }
+  // A 2D path across a circle or box corner: blocked (ShrinkToClear finds how far).
+  if (first > 1.0 && !Conflict(a, b, t_a).empty()) first = 1.0;
+  return first;
+}
+
+double EdgeObstaclePairs::ShrinkToClear(const double* from, const double* to, double t) const {
+  if (c_.dimension != 2 || !(t > 0.0)) return t;
+  const int n = c_.num_coordinates;
+  Eigen::VectorXd end(n);
+  for (int halvings = 0; halvings < 60; ++halvings) {
+    for (int k = 0; k < n; ++k) end[k] = from[k] + t * (to[k] - from[k]);
+    if (Conflict(from, end.data(), *c_.time).empty()) break;
+    t *= 0.5;
+  }
+  return t;
+}
+
+std::string EdgeObstaclePairs::Conflict(const double* a, const double* x, double t) const {
+  if (c_.dimension != 2) return "";
+  for (const Obstacle& obstacle : *c_.obstacles) {
+    if (obstacle.type == ObstacleType::kPlane) continue;
+    // Features that can cross an edge's interior first, in world coordinates.
+    const Eigen::Vector3d shift = obstacle.velocity * t;
+    std::vector<Eigen::Vector2d> features;
+    if (obstacle.type == ObstacleType::kSphere) {
+      features.push_back((obstacle.point + shift).head<2>());
+    } else {
+      for (int corner = 0; corner < 4; ++corner) {
+        features.emplace_back((corner & 1 ? obstacle.upper : obstacle.lower)[0] + shift[0],
+                              (corner & 2 ? obstacle.upper : obstacle.lower)[1] + shift[1]);
+      }
+    }
+    auto node = [](const double* y, int i) { return Eigen::Vector2d(y[2 * i], y[2 * i + 1]); };
+    for (const auto& e : c_.mesh->edges) {
+      const Eigen::Vector3d p = ToPoint(x + 2 * e[0], 2), q = ToPoint(x + 2 * e[1], 2);
+      // The segment p -> q read as a point path: it meets the grown obstacle.
+      if (obstacle.TimeOfImpact(p, q, t, t, c_.margin) <= 1.0) {
+        std::ostringstream out;
+        out << "boundary edge (" << e[0] << ", " << e[1] << ") meets " << obstacle.name;
+        return out.str();
+      }
+      if (a == x) continue;
+      for (const Eigen::Vector2d& f : features) {
+        if (PointEdgeTimeOfImpact(f, f, node(a, e[0]), node(x, e[0]), node(a, e[1]),
+                                  node(x, e[1])) <= 1.0) {
+          std::ostringstream out;
+          out << "boundary edge (" << e[0] << ", " << e[1] << ") sweeps across " << obstacle.name;
+          return out.str();
+        }
+      }
+    }
+  }
+  return "";
+}
+
+std::string EdgeObstaclePairs::FindPenetration(const double* x, double t) const {
+  const std::string conflict = Conflict(x, x, t);
+  if (!conflict.empty()) return conflict;
+  for (const Pair& p : All(false)) {
+    const double d = Distance(x, t, p);
+    if (!(d > c_.margin)) {
+      const auto& e = c_.mesh->edges[p.edge];
+      std::ostringstream out;
+      out << "edge (" << e[0] << ", " << e[1] << ") is inside or touching "
+          << (*c_.obstacles)[p.obstacle].name << " (distance " << d << ")";
+      return out.str();
+    }
+  }
+  return "";
+}
+
+void EdgeObstaclePairs::Near(const double* x, double t, double reach, double* min_distance,
+                             int* count) const {
+  for (const Pair& p : All(false)) {
+    const double d = Distance(x, t, p);
+    if (d < reach) {
+      *min_distance = std::min(*min_distance, d);
+      ++*count;
+    }
+  }
+}
+
+void EdgeObstaclePairs::AddBarrierGradient(const double* x, double t, double scale,
+                                           Eigen::VectorXd* g) const {
+  const int dim = c_.dimension;
+  for (const Pair& p : All(false)) {
+    Eigen::Vector3d grad[2];
+    const double d = Distance(x, t, p, &grad[0], &grad[1]);
+    if (!(d > 0.0 && d < c_.d_hat)) continue;
+    const double w = scale * c_.mesh->edge_weights[p.edge] * BarrierDerivative(d, c_.d_hat);
+    for (int end = 0; end < 2; ++end) {
+      const int node = c_.mesh->edges[p.edge][end];
+      for (int k = 0; k < dim; ++k) (*g)[dim * node + k] += w * grad[end][k];
+    }
+  }
+}
+
+void EdgeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const Pair& pair = pairs_[k];
+    const auto& e = c_.mesh->edges[pair.edge];
+    Term term;
+    term.kind = TermKind::kPotential;
+    term.family = c_.barrier_family;
+    term.impulsive = true;
+    term.nodes = {e[0], e[1]};
+    const Obstacle& obstacle = (*c_.obstacles)[pair.obstacle];
+    auto cost = std::make_unique<EdgeObstacleGap>(
+        c_.dimension, &obstacle, pair.feature, c_.time, c_.d_hat, c_.margin,
+        obstacle.FeatureRadius() > 0.0 ? &pairs_.data()[k] : nullptr);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
+    term.loss = std::make_unique<BarrierLoss>(c_.d_hat, c_.mesh->edge_weights[pair.edge], c_.kappa);
+    potential->AddTerm(std::move(term));
+  }
+}
+
+double EdgeObstaclePairs::Lag(const double* x) {
+  double excess = 0.0;
+  std::vector<double>& alpha = pairs_.data();
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const Pair& p = pairs_[k];
+    const Obstacle& o = (*c_.obstacles)[p.obstacle];
+    const Eigen::Vector3d a = End(x, p.edge, 0), b = End(x, p.edge, 1);
+    double closest = 0.0;
+    PointSegmentDistance(o.EdgeFeature(p.feature, *c_.time), a, b, &closest);
+    const double d = o.EdgeDistance(p.feature, a, b, *c_.time);
+    if (d > 0.0 && d < c_.d_hat) {
+      const double lagged = o.EdgePointDistance(p.feature, a, b, alpha[k], *c_.time);
+      excess = std::max(excess, (lagged - d) / d);
+    }
+    alpha[k] = closest;
+  }
+  return excess;
+}
+
+}  // namespace ipstep

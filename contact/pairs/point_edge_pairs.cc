@@ -1,0 +1,221 @@
+#include "contact/pairs/point_edge_pairs.h"
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+#include <utility>
+
+#include "contact/barrier.h"
+#include "contact/contact_terms.h"
+#include "contact/friction.h"
+#include "contact/point_edge.h"
+
+namespace ipstep {
+
+PointEdgePairs::PointEdgePairs(const PairSetContext& context, const double* initial)
+    : c_(context), active_(context.dimension == 2 && !context.mesh->edges.empty()), hash_(2, 1.0) {
+  if (!active_) return;
+  double total = 0.0;
+  for (const auto& e : c_.mesh->edges) {
+    total += (ToPoint(initial + 2 * e[0], 2) - ToPoint(initial + 2 * e[1], 2)).norm();
+  }
+  hash_ = SpatialHash(2, std::max(total / c_.mesh->edges.size(), 2.0 * c_.d_hat));
+}
+
+bool PointEdgePairs::HasFreeNode(const Pair& pair) const {
+  const auto& e = c_.mesh->edges[pair.edge];
+  const std::vector<int>& nodes = c_.mesh->nodes;
+  auto free = [&](int node) {
+    const auto it = std::lower_bound(nodes.begin(), nodes.end(), node);
+    return (*c_.node_free)[it - nodes.begin()];
+  };
+  return (*c_.node_free)[pair.slot] || free(e[0]) || free(e[1]);
+}
+
+double PointEdgePairs::Distance(const double* x, const Pair& p) const {
+  const auto& e = c_.mesh->edges[p.edge];
+  return PointEdgeDistance(Node(x, c_.mesh->nodes[p.slot]), Node(x, e[0]), Node(x, e[1])).distance;
+}
+
+void PointEdgePairs::Candidates(const double* a, const double* b, double grow,
+                                std::vector<Pair>* pairs) const {
+  pairs->clear();
+  if (!active_) return;
+  const Eigen::Vector3d g = Eigen::Vector3d::Constant(grow);
+  hash_.Clear();
+  const auto& edges = c_.mesh->edges;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const int i = edges[e][0], j = edges[e][1];
+    const Eigen::Vector3d ai = ToPoint(a + 2 * i, 2), bi = ToPoint(b + 2 * i, 2);
+    const Eigen::Vector3d aj = ToPoint(a + 2 * j, 2), bj = ToPoint(b + 2 * j, 2);
+    hash_.Insert(static_cast<int>(e), ai.cwiseMin(bi).cwiseMin(aj.cwiseMin(bj)) - g,
+                 ai.cwiseMax(bi).cwiseMax(aj.cwiseMax(bj)) + g);
+  }
+  for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
+    const int node = c_.mesh->nodes[s];
+    const Eigen::Vector3d pa = ToPoint(a + 2 * node, 2), pb = ToPoint(b + 2 * node, 2);
+    hash_.Query(pa.cwiseMin(pb), pa.cwiseMax(pb), &scratch_ids_);
+    for (int e : scratch_ids_) {
+      if (edges[e][0] == node || edges[e][1] == node) continue;
+      pairs->push_back(Pair{static_cast<int>(s), e});
+    }
+  }
+}
+
+bool PointEdgePairs::Extend(const CandidateRegion& region) {
+  std::vector<Pair> candidates;
+  Candidates(region.start, region.end, c_.d_hat + region.max_reach, &candidates);
+  bool added = false;
+  for (const Pair& pair : candidates) {
+    if (HasFreeNode(pair)) added |= pairs_.Insert(pair);
+  }
+  return added;
+}
+
+bool PointEdgePairs::Missing(const double* x) const {
+  std::vector<Pair> candidates;
+  Candidates(x, x, c_.d_hat, &candidates);
+  for (const Pair& p : candidates) {
+    if (HasFreeNode(p) && Distance(x, p) < c_.d_hat && !pairs_.Contains(p)) return true;
+  }
+  return false;
+}
+
+double PointEdgePairs::TimeOfImpact(const double* a, const double* b, double, double) const {
+  std::vector<Pair> candidates;
+  Candidates(a, b, c_.margin, &candidates);
+  double first = kNoImpact;
+  bool end_too_close = false;
+  for (const Pair& p : candidates) {
+    const auto& e = c_.mesh->edges[p.edge];
+    const int node = c_.mesh->nodes[p.slot];
+    first = std::min(first, PointEdgeTimeOfImpact(Node(a, node), Node(b, node), Node(a, e[0]),
+                                                  Node(b, e[0]), Node(a, e[1]), Node(b, e[1])));
+    end_too_close |= !(Distance(b, p) > c_.margin);
+  }
+  // The impact test stops at contact; the margin is checked at the end.
+  if (first > 1.0 && end_too_close) first = 1.0;
+  return first;
+}
+
+std::string PointEdgePairs::FindPenetration(const double* x, double) const {
+  if (!active_) return "";
+  std::vector<Pair> candidates;
+  Candidates(x, x, 0.0, &candidates);
+  for (const Pair& p : candidates) {
+    const double d = Distance(x, p);
+    if (!(d > c_.margin)) {
+      const auto& e = c_.mesh->edges[p.edge];
+      std::ostringstream out;
+      out << "boundary node " << c_.mesh->nodes[p.slot] << " touches boundary edge (" << e[0]
+          << ", " << e[1] << ") (distance " << d << ")";
+      return out.str();
+    }
+  }
+  // Edges crossing without a node on the other edge.
+  const auto& edges = c_.mesh->edges;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const auto& ea = edges[e];
+    const Eigen::Vector2d a0 = Node(x, ea[0]), a1 = Node(x, ea[1]);
+    const Eigen::Vector2d lo = a0.cwiseMin(a1), hi = a0.cwiseMax(a1);
+    for (size_t f = e + 1; f < edges.size(); ++f) {
+      const auto& eb = edges[f];
+      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
+      const Eigen::Vector2d b0 = Node(x, eb[0]), b1 = Node(x, eb[1]);
+      if ((b0.cwiseMin(b1).array() > hi.array()).any() ||
+          (lo.array() > b0.cwiseMax(b1).array()).any()) {
+        continue;
+      }
+      if (SegmentsIntersect(a0, a1, b0, b1)) {
+        std::ostringstream out;
+        out << "boundary edges (" << ea[0] << ", " << ea[1] << ") and (" << eb[0] << ", " << eb[1]
+            << ") intersect";
+        return out.str();
+      }
+    }
+  }
+  return "";
+}
+
+void PointEdgePairs::Near(const double* x, double, double reach, double* min_distance,
+                          int* count) const {
+  std::vector<Pair> candidates;
+  Candidates(x, x, reach, &candidates);
+  for (const Pair& p : candidates) {
+    const double d = Distance(x, p);
+    if (d < reach) {
+      *min_distance = std::min(*min_distance, d);
+      ++*count;
+    }
+  }
+}
+
+void PointEdgePairs::AddBarrierGradient(const double* x, double, double scale,
+                                        Eigen::VectorXd* g) const {
+  std::vector<Pair> candidates;
+  Candidates(x, x, c_.d_hat, &candidates);
+  for (const Pair& p : candidates) {
+    const auto& e = c_.mesh->edges[p.edge];
+    const int node = c_.mesh->nodes[p.slot];
+    const PointEdgeDistanceResult r =
+        PointEdgeDistance(Node(x, node), Node(x, e[0]), Node(x, e[1]));
+    if (!(r.distance > 0.0 && r.distance < c_.d_hat)) continue;
+    const double w = scale * c_.mesh->weights[p.slot] * BarrierDerivative(r.distance, c_.d_hat);
+    g->segment<2>(2 * node) += w * r.grad_p;
+    g->segment<2>(2 * e[0]) += w * r.grad_a;
+    g->segment<2>(2 * e[1]) += w * r.grad_b;
+  }
+}
+
+void PointEdgePairs::AddBarrierTerms(IncrementalPotential* potential) const {
+  for (const Pair& pair : pairs_.pairs()) {
+    const auto& e = c_.mesh->edges[pair.edge];
+    Term term;
+    term.kind = TermKind::kPotential;
+    term.family = c_.barrier_family;
+    term.impulsive = true;
+    term.nodes = {c_.mesh->nodes[pair.slot], e[0], e[1]};
+    auto cost = std::make_unique<PointEdgeGap>(c_.d_hat, c_.margin);
+    term.curvature = GapCurvature(cost.get());
+    term.cost = std::move(cost);
+    term.loss = std::make_unique<BarrierLoss>(c_.d_hat, c_.mesh->weights[pair.slot], c_.kappa);
+    potential->AddTerm(std::move(term));
+  }
+}
+
+void PointEdgePairs::LagFriction(const double* x, double) {
+  lagged_.clear();
+  for (const Pair& pair : pairs_.pairs()) {
+    const auto& e = c_.mesh->edges[pair.edge];
+    const int node = c_.mesh->nodes[pair.slot];
+    const PointEdgeDistanceResult r =
+        PointEdgeDistance(Node(x, node), Node(x, e[0]), Node(x, e[1]));
+    if (!(r.distance > 0.0 && r.distance < c_.d_hat)) continue;
+    const double lambda =
+        -*c_.kappa * c_.mesh->weights[pair.slot] * BarrierDerivative(r.distance, c_.d_hat);
+    const Eigen::Vector2d tangent(-r.grad_p[1], r.grad_p[0]);
+    lagged_.push_back(LaggedFriction{node, e[0], e[1], tangent, r.alpha, lambda});
+  }
+}
+
+int PointEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
+                                     IncrementalPotential* potential) const {
+  const double eps_v = friction.epsilon_v;
+  const double c = kFrictionSpeedScale * eps_v;
+  for (const LaggedFriction& f : lagged_) {
+    for (int side : {1, -1}) {
+      Term term;
+      term.kind = TermKind::kDissipation;
+      term.family = c_.friction_family;
+      term.impulsive = true;
+      term.nodes = {f.p, f.a, f.b};
+      term.cost =
+          std::make_unique<EdgeFriction>(c_.step, f.p, f.a, f.b, f.tangent, f.alpha, side, c);
+      term.loss = std::make_unique<OneSidedFrictionLoss>(friction.mu * f.normal_force, c, eps_v);
+      potential->AddTerm(std::move(term));
+    }
+  }
+  return static_cast<int>(lagged_.size());
+}
+
+}  // namespace ipstep

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Writes the 3D self-contact scenes of problems/self_contact/ (not built in:
+load them by path, tests/self_contact_scenes_test.cc does).
+
+Cloths are explicit node grids whose springs give ONE triangulation of the
+surface (contact/collision_mesh.h builds faces from 3-cliques of contact
+edges): structural springs and one shear diagonal per quad (squared strain),
+plus Hookean bending springs across two cells (not contact edges: they span a
+node). Parameters as problems/cloth_sphere.json: 0.2 kg per m^2, k = 2e3,
+bending 50, d_hat 5 mm, adaptive kappa.
+
+    python3 problems/self_contact/generate.py
+"""
+import json
+import math
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def cloth(n, size, place, first=0):
+    """n x n nodes, spacing size / (n - 1); place(u, v) -> [x, y, z] with u, v
+    in [0, size]. Returns positions, springs (node ids from `first`)."""
+    a = size / (n - 1)
+    positions = []
+    for j in range(n):
+        for i in range(n):
+            positions.append([round(c, 12) for c in place(i * a, j * a)])
+    springs = []
+
+    def idx(i, j):
+        return first + j * n + i
+
+    def spring(p, q, model, k):
+        springs.append({"nodes": [p, q], "model": model, "stiffness": k})
+
+    for j in range(n):
+        for i in range(n):
+            if i + 1 < n:
+                spring(idx(i, j), idx(i + 1, j), "squared_strain", 2000.0)
+            if j + 1 < n:
+                spring(idx(i, j), idx(i, j + 1), "squared_strain", 2000.0)
+            if i + 1 < n and j + 1 < n:
+                spring(idx(i, j), idx(i + 1, j + 1), "squared_strain", 2000.0)
+            if i + 2 < n:
+                spring(idx(i, j), idx(i + 2, j), "hookean", 50.0)
+            if j + 2 < n:
+                spring(idx(i, j), idx(i, j + 2), "hookean", 50.0)
+    return positions, springs
+
+
+def scene(name, description, positions, springs, masses, obstacles, steps, h=0.0025,
+          moving=None):
+    s = {
+        "name": name,
+        "description": description,
+        "dimension": 3,
+        "time_step": h,
+        "steps": steps,
+        "effects": ["gravity", "springs", "contact"],
+        "gravity": [0, -9.81, 0],
+        "nodes": {"positions": positions, "masses": masses},
+        "springs": springs,
+    }
+    if moving:
+        s["moving"] = moving
+    s["contact"] = {"dhat": 0.005, "self_contact": True, "obstacles": obstacles}
+    with open(os.path.join(HERE, name + ".json"), "w") as f:
+        json.dump(s, f, indent=1)
+        f.write("\n")
+
+
+def main():
+    n = 12
+    ground = lambda y: {"type": "plane", "point": [0, y, 0], "normal": [0, 1, 0]}
+
+    # 1. A 1.2 m cloth falls onto a sphere and the ground close below it: the
+    # skirt lands on the ground and folds onto itself.
+    pos, spr = cloth(n, 1.2, lambda u, v: [u - 0.6, 0.25, v - 0.6])
+    scene("cloth_sphere_fold",
+          "3D self-contact: a 1.2 m x 1.2 m cloth (12 x 12 nodes, one triangulation, 0.29 kg) "
+          "falls from y = 0.25 onto a sphere of radius 0.2 at the origin with the ground at "
+          "y = -0.12; its skirt lands on the ground and folds onto itself. "
+          "problems/self_contact/generate.py.",
+          pos, spr, [0.2 * 1.44 / len(pos)] * len(pos),
+          [{"type": "sphere", "center": [0, 0, 0], "radius": 0.2}, ground(-0.12)], 240)
+
+    # 2. Two cloths dropped onto a box: the upper one turned by 30 degrees
+    # about y, 4 cm above the lower one.
+    c, s30 = math.cos(math.pi / 6), math.sin(math.pi / 6)
+    pos_a, spr_a = cloth(n, 0.8, lambda u, v: [u - 0.4, 0.05, v - 0.4])
+    pos_b, spr_b = cloth(n, 0.8, lambda u, v: [c * (u - 0.4) - s30 * (v - 0.4), 0.09,
+                                               s30 * (u - 0.4) + c * (v - 0.4)], first=n * n)
+    masses = [0.2 * 0.64 / (n * n)] * (2 * n * n)
+    scene("two_cloths_box",
+          "3D self-contact: two 0.8 m x 0.8 m cloths (12 x 12 nodes each, one triangulation) "
+          "dropped onto a 0.4 m x 0.3 m x 0.4 m box (top at y = 0) on the ground y = -0.3; the "
+          "upper cloth, turned by 30 degrees, starts 4 cm above the lower one and lands on it. "
+          "problems/self_contact/generate.py.",
+          pos_a + pos_b, spr_a + spr_b, masses,
+          [{"type": "box", "min": [-0.2, -0.3, -0.2], "max": [0.2, 0, 0.2]}, ground(-0.3)], 200)
+
+    # 3. A cloth held at two opposite edges that move towards each other: it
+    # sags, and its two hanging halves are pushed together and touch.
+    pos, spr = cloth(n, 1.0, lambda u, v: [u - 0.5, 0.0, v - 0.5])
+    moving = []
+    for j in range(n):
+        moving.append({"node": j * n, "velocity": [0.3, 0, 0]})
+        moving.append({"node": j * n + n - 1, "velocity": [-0.3, 0, 0]})
+    scene("cloth_pinch",
+          "3D self-contact: a 1 m x 1 m cloth (12 x 12 nodes, one triangulation, 0.2 kg) held "
+          "at its two edges x = -0.5 and x = 0.5, which move towards each other at 0.3 m/s "
+          "each (constant velocity; a twist would need rotating nodes, which scenes do not "
+          "have): the cloth sags under gravity, then its two hanging halves are pressed "
+          "together. problems/self_contact/generate.py.",
+          pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 600, moving=moving)
+
+
+if __name__ == "__main__":
+    main()
