@@ -5,21 +5,15 @@
 
 #include <Eigen/Geometry>
 
+#include "contact/exact_orientation.h"
+
 namespace ipstep {
 
 namespace {
 
-using L = long double;
-
-int Sign(L v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
-
-// 2D orientation of (a, b, c) in the coordinates (i, j): sign of
-// (b - a) x (c - a).
 int Orientation2(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                  int i, int j) {
-  const L bx = L(b[i]) - L(a[i]), by = L(b[j]) - L(a[j]);
-  const L cx = L(c[i]) - L(a[i]), cy = L(c[j]) - L(a[j]);
-  return Sign(bx * cy - by * cx);
+  return ExactOrient2d(a, b, c, i, j);
 }
 
 // Closed 2D segments [p, q], [u, v] (coordinates i, j) intersect.
@@ -54,10 +48,7 @@ bool Inside2(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Ve
 
 int Orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                 const Eigen::Vector3d& d) {
-  const L ax = L(a[0]) - L(d[0]), ay = L(a[1]) - L(d[1]), az = L(a[2]) - L(d[2]);
-  const L bx = L(b[0]) - L(d[0]), by = L(b[1]) - L(d[1]), bz = L(b[2]) - L(d[2]);
-  const L cx = L(c[0]) - L(d[0]), cy = L(c[1]) - L(d[1]), cz = L(c[2]) - L(d[2]);
-  return Sign(ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx));
+  return ExactOrient3d(a, b, c, d);
 }
 
 bool SegmentTriangleIntersect(const Eigen::Vector3d& p, const Eigen::Vector3d& q,

@@ -5,10 +5,10 @@
 //
 // orient(a, b, c, d) = (a - d) . ((b - d) x (c - d)): positive when d is below
 // the plane of (a, b, c) oriented counter-clockwise, zero when coplanar.
-// Evaluated in long double from double inputs (64-bit mantissa on x86: the
-// differences of nearby coordinates and their products lose far less than in
-// double), but not with exact (expansion) arithmetic: results are exact
-// except for configurations within round-off of a degenerate one.
+// Signs are exact for the double inputs (contact/exact_orientation.h: a
+// filtered double evaluation, exact expansion arithmetic when it is not
+// certain), so the tests below are exact, degenerate (coplanar, touching)
+// configurations included.
 //
 // Segment [p, q] against the closed triangle [a, b, c] (non-degenerate):
 //  * p, q strictly on the same side of the plane: no intersection;

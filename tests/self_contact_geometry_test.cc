@@ -19,6 +19,7 @@
 #include "contact/bvh.h"
 #include "contact/distance_hessian.h"
 #include "contact/edge_edge_mollifier.h"
+#include "contact/exact_orientation.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
 #include "contact/self_ccd.h"
@@ -492,6 +493,52 @@ TEST(TriangleIntersection, KnownConfigurations) {
   EXPECT_FALSE(TrianglesIntersect(a, b, c, V(2, 2, 0), V(3, 2, 0), V(2, 3, 0)));
   // Parallel planes.
   EXPECT_FALSE(TrianglesIntersect(a, b, c, V(0, 0, 1e-9), V(1, 0, 1e-9), V(0, 1, 1e-9)));
+}
+
+// Exact signs where the double evaluation cannot tell: points on the plane
+// z = x + y (exactly representable sums) and the next double above.
+TEST(ExactOrientation, CoplanarAndOneUlpOff) {
+  std::mt19937 rng(31);
+  std::uniform_int_distribution<int> k(-1000, 1000);
+  auto on_plane = [&]() {
+    const double x = k(rng) / 64.0, y = k(rng) / 64.0;
+    return V(x, y, x + y);
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    const V a = on_plane(), b = on_plane(), c = on_plane();
+    V d = on_plane();
+    if (ExactOrient2d(a, b, c, 0, 1) == 0) continue;  // collinear in the projection
+    EXPECT_EQ(ExactOrient3d(a, b, c, d), 0);
+    const int below = ExactOrient3d(a, b, c, V(d[0], d[1], std::nextafter(d[2], -1e9)));
+    const int above = ExactOrient3d(a, b, c, V(d[0], d[1], std::nextafter(d[2], 1e9)));
+    EXPECT_NE(below, 0);
+    EXPECT_EQ(below, -above);
+  }
+  // Far from the origin, tiny offsets: the filter must defer to the exact sum.
+  const V a(1e6 + 0.1, 1e6, 1e6), b(1e6 + 0.2, 1e6 + 0.1, 1e6), c(1e6 + 0.1, 1e6 + 0.3, 1e6);
+  EXPECT_EQ(ExactOrient3d(a, b, c, V(1e6 + 0.15, 1e6 + 0.1, 1e6)), 0);
+  EXPECT_NE(ExactOrient3d(a, b, c, V(1e6 + 0.15, 1e6 + 0.1, std::nextafter(1e6, 2e6))), 0);
+}
+
+// A slanted strip of a rounded grid: faces of different rows meet at most at
+// one point each and do not intersect, although nearly coplanar.
+TEST(TriangleIntersection, NearlyCoplanarStripHasNoFalseIntersections) {
+  const double a = 1.2 / 15.0;
+  auto p = [&](int i, int j) {
+    const double x = i == 0 ? 7 * a - 0.45 : 7.5 * a - 0.45;
+    return V(std::round(x * 1e12) / 1e12, i == 0 ? 0.3 : 0.34,
+             std::round((j * a - 0.6) * 1e12) / 1e12);
+  };
+  // Face (0, j) (1, j) (1, j + 1) against face (0, k) (0, k + 1) (1, k + 1),
+  // k > j: no common node, disjoint (the configuration that a long double
+  // evaluation reported as intersecting).
+  for (int j = 0; j + 1 < 16; ++j) {
+    for (int k = j + 1; k + 1 < 16; ++k) {
+      EXPECT_FALSE(
+          TrianglesIntersect(p(0, j), p(1, j), p(1, j + 1), p(0, k), p(0, k + 1), p(1, k + 1)))
+          << j << " " << k;
+    }
+  }
 }
 
 TEST(TriangleIntersection, AgreesWithTheSegmentTestOfPointTriangle) {

@@ -18,9 +18,11 @@ import os
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def cloth(n, size, place, first=0):
+def cloth(n, size, place, first=0, rest=False):
     """n x n nodes, spacing size / (n - 1); place(u, v) -> [x, y, z] with u, v
-    in [0, size]. Returns positions, springs (node ids from `first`)."""
+    in [0, size]. Returns positions, springs (node ids from `first`); with
+    `rest`, every spring's rest length is that of the flat grid (else the
+    loader takes the initial length)."""
     a = size / (n - 1)
     positions = []
     for j in range(n):
@@ -31,21 +33,24 @@ def cloth(n, size, place, first=0):
     def idx(i, j):
         return first + j * n + i
 
-    def spring(p, q, model, k):
-        springs.append({"nodes": [p, q], "model": model, "stiffness": k})
+    def spring(p, q, model, k, length):
+        entry = {"nodes": [p, q], "model": model, "stiffness": k}
+        if rest:
+            entry["rest_length"] = round(length, 12)
+        springs.append(entry)
 
     for j in range(n):
         for i in range(n):
             if i + 1 < n:
-                spring(idx(i, j), idx(i + 1, j), "squared_strain", 2000.0)
+                spring(idx(i, j), idx(i + 1, j), "squared_strain", 2000.0, a)
             if j + 1 < n:
-                spring(idx(i, j), idx(i, j + 1), "squared_strain", 2000.0)
+                spring(idx(i, j), idx(i, j + 1), "squared_strain", 2000.0, a)
             if i + 1 < n and j + 1 < n:
-                spring(idx(i, j), idx(i + 1, j + 1), "squared_strain", 2000.0)
+                spring(idx(i, j), idx(i + 1, j + 1), "squared_strain", 2000.0, a * math.sqrt(2))
             if i + 2 < n:
-                spring(idx(i, j), idx(i + 2, j), "hookean", 50.0)
+                spring(idx(i, j), idx(i + 2, j), "hookean", 50.0, 2 * a)
             if j + 2 < n:
-                spring(idx(i, j), idx(i, j + 2), "hookean", 50.0)
+                spring(idx(i, j), idx(i, j + 2), "hookean", 50.0, 2 * a)
     return positions, springs
 
 
@@ -74,16 +79,30 @@ def main():
     n = 12
     ground = lambda y: {"type": "plane", "point": [0, y, 0], "normal": [0, 1, 0]}
 
-    # 1. A 1.2 m cloth falls onto a sphere and the ground close below it: the
-    # skirt lands on the ground and folds onto itself.
-    pos, spr = cloth(n, 1.2, lambda u, v: [u - 0.6, 0.25, v - 0.6])
+    # 1. A cloth folded in half (the upper half 4 cm above the lower one,
+    # rest lengths those of the flat cloth) falls onto a sphere: the lower
+    # half drapes over the sphere and the upper half lands on it.
+    m = 16
+    size = 1.2
+    a = size / (m - 1)
+    half = m // 2
+    gap = 0.04
+
+    def folded(u, v):
+        i = round(u / a)
+        if i < half:
+            return [u - 0.45, 0.3, v - 0.6]
+        return [(m - 1 - i) * a + 0.5 * a - 0.45, 0.3 + gap, v - 0.6]
+
+    pos, spr = cloth(m, size, folded, rest=True)
     scene("cloth_sphere_fold",
-          "3D self-contact: a 1.2 m x 1.2 m cloth (12 x 12 nodes, one triangulation, 0.29 kg) "
-          "falls from y = 0.25 onto a sphere of radius 0.2 at the origin with the ground at "
-          "y = -0.12; its skirt lands on the ground and folds onto itself. "
-          "problems/self_contact/generate.py.",
+          "3D self-contact: a 1.2 m x 1.2 m cloth (16 x 16 nodes, one triangulation, 0.29 kg) "
+          "folded in half (upper half 4 cm above the lower one, shifted half a cell; rest "
+          "lengths those of the flat cloth) falls from y = 0.3 onto a sphere of radius 0.2 at "
+          "the origin, ground y = -0.3: the lower half drapes over the sphere and the upper "
+          "half lands on it. problems/self_contact/generate.py.",
           pos, spr, [0.2 * 1.44 / len(pos)] * len(pos),
-          [{"type": "sphere", "center": [0, 0, 0], "radius": 0.2}, ground(-0.12)], 240)
+          [{"type": "sphere", "center": [0, 0, 0], "radius": 0.2}, ground(-0.3)], 300)
 
     # 2. Two cloths dropped onto a box: the upper one turned by 30 degrees
     # about y, 4 cm above the lower one.
@@ -100,20 +119,23 @@ def main():
           pos_a + pos_b, spr_a + spr_b, masses,
           [{"type": "box", "min": [-0.2, -0.3, -0.2], "max": [0.2, 0, 0.2]}, ground(-0.3)], 200)
 
-    # 3. A cloth held at two opposite edges that move towards each other: it
-    # sags, and its two hanging halves are pushed together and touch.
+    # 3. A cloth held at two opposite edges that move towards each other and
+    # past each other at different heights: it sags into a U whose sides are
+    # pushed together, then the hanging side of the upper edge is caught on
+    # the lower edge and drapes over it.
     pos, spr = cloth(n, 1.0, lambda u, v: [u - 0.5, 0.0, v - 0.5])
     moving = []
     for j in range(n):
-        moving.append({"node": j * n, "velocity": [0.3, 0, 0]})
-        moving.append({"node": j * n + n - 1, "velocity": [-0.3, 0, 0]})
+        moving.append({"node": j * n, "velocity": [0.4, 0, 0]})
+        moving.append({"node": j * n + n - 1, "velocity": [-0.4, -0.12, 0]})
     scene("cloth_pinch",
           "3D self-contact: a 1 m x 1 m cloth (12 x 12 nodes, one triangulation, 0.2 kg) held "
-          "at its two edges x = -0.5 and x = 0.5, which move towards each other at 0.3 m/s "
-          "each (constant velocity; a twist would need rotating nodes, which scenes do not "
-          "have): the cloth sags under gravity, then its two hanging halves are pressed "
-          "together. problems/self_contact/generate.py.",
-          pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 600, moving=moving)
+          "at its two edges x = -0.5 and x = 0.5, which move towards each other at 0.4 m/s, "
+          "the second also down at 0.12 m/s (constant velocities: scenes have no rotating "
+          "nodes for a twist): the cloth sags into a U whose sides are pushed together, and "
+          "after the edges pass each other (t = 1.25 s) the upper edge's side is caught on the "
+          "lower edge. problems/self_contact/generate.py.",
+          pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 800, moving=moving)
 
 
 if __name__ == "__main__":
