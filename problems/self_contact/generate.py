@@ -18,11 +18,14 @@ import os
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def cloth(n, size, place, first=0, rest=False):
+def cloth(n, size, place, first=0, rest=False, crease=None):
     """n x n nodes, spacing size / (n - 1); place(u, v) -> [x, y, z] with u, v
     in [0, size]. Returns positions, springs (node ids from `first`); with
     `rest`, every spring's rest length is that of the flat grid (else the
-    loader takes the initial length)."""
+    loader takes the initial length). `crease`: a column index; bending
+    springs across it are left out (BuildCollisionMesh decides from the
+    initial positions which springs span a node, and a bending spring across
+    a fold does not, so it would become a contact edge)."""
     a = size / (n - 1)
     positions = []
     for j in range(n):
@@ -47,7 +50,7 @@ def cloth(n, size, place, first=0, rest=False):
                 spring(idx(i, j), idx(i, j + 1), "squared_strain", 2000.0, a)
             if i + 1 < n and j + 1 < n:
                 spring(idx(i, j), idx(i + 1, j + 1), "squared_strain", 2000.0, a * math.sqrt(2))
-            if i + 2 < n:
+            if i + 2 < n and not (crease is not None and i < crease <= i + 2):
                 spring(idx(i, j), idx(i + 2, j), "hookean", 50.0, 2 * a)
             if j + 2 < n:
                 spring(idx(i, j), idx(i, j + 2), "hookean", 50.0, 2 * a)
@@ -55,7 +58,7 @@ def cloth(n, size, place, first=0, rest=False):
 
 
 def scene(name, description, positions, springs, masses, obstacles, steps, h=0.0025,
-          moving=None):
+          moving=None, velocities=None):
     s = {
         "name": name,
         "description": description,
@@ -67,6 +70,8 @@ def scene(name, description, positions, springs, masses, obstacles, steps, h=0.0
         "nodes": {"positions": positions, "masses": masses},
         "springs": springs,
     }
+    if velocities:
+        s["nodes"]["velocities"] = velocities
     if moving:
         s["moving"] = moving
     s["contact"] = {"dhat": 0.005, "self_contact": True, "obstacles": obstacles}
@@ -94,11 +99,11 @@ def main():
             return [u - 0.45, 0.3, v - 0.6]
         return [(m - 1 - i) * a + 0.5 * a - 0.45, 0.3 + gap, v - 0.6]
 
-    pos, spr = cloth(m, size, folded, rest=True)
+    pos, spr = cloth(m, size, folded, rest=True, crease=half)
     scene("cloth_sphere_fold",
           "3D self-contact: a 1.2 m x 1.2 m cloth (16 x 16 nodes, one triangulation, 0.29 kg) "
           "folded in half (upper half 4 cm above the lower one, shifted half a cell; rest "
-          "lengths those of the flat cloth) falls from y = 0.3 onto a sphere of radius 0.2 at "
+          "lengths those of the flat cloth, no bending springs across the crease) falls from y = 0.3 onto a sphere of radius 0.2 at "
           "the origin, ground y = -0.3: the lower half drapes over the sphere and the upper "
           "half lands on it. problems/self_contact/generate.py.",
           pos, spr, [0.2 * 1.44 / len(pos)] * len(pos),
@@ -119,23 +124,28 @@ def main():
           pos_a + pos_b, spr_a + spr_b, masses,
           [{"type": "box", "min": [-0.2, -0.3, -0.2], "max": [0.2, 0, 0.2]}, ground(-0.3)], 200)
 
-    # 3. A cloth held at two opposite edges that move towards each other and
-    # past each other at different heights: it sags into a U whose sides are
-    # pushed together, then the hanging side of the upper edge is caught on
-    # the lower edge and drapes over it.
+    # 3. A cloth held at two opposite edges that move towards each other,
+    # its middle thrown upwards: it buckles up into a tall loop, which the
+    # approaching edges narrow until it falls over onto itself.
     pos, spr = cloth(n, 1.0, lambda u, v: [u - 0.5, 0.0, v - 0.5])
     moving = []
     for j in range(n):
         moving.append({"node": j * n, "velocity": [0.4, 0, 0]})
-        moving.append({"node": j * n + n - 1, "velocity": [-0.4, -0.12, 0]})
+        moving.append({"node": j * n + n - 1, "velocity": [-0.4, 0, 0]})
+    velocities = [[round(-1.5 * math.sin(math.pi * (p[0] + 0.5)), 12),
+                   round(2.0 * math.sin(math.pi * (p[0] + 0.5)), 12), 0.0] for p in pos]
+    for entry in moving:  # held nodes start at their prescribed velocity
+        velocities[entry["node"]] = list(entry["velocity"])
     scene("cloth_pinch",
           "3D self-contact: a 1 m x 1 m cloth (12 x 12 nodes, one triangulation, 0.2 kg) held "
-          "at its two edges x = -0.5 and x = 0.5, which move towards each other at 0.4 m/s, "
-          "the second also down at 0.12 m/s (constant velocities: scenes have no rotating "
-          "nodes for a twist): the cloth sags into a U whose sides are pushed together, and "
-          "after the edges pass each other (t = 1.25 s) the upper edge's side is caught on the "
-          "lower edge. problems/self_contact/generate.py.",
-          pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 800, moving=moving)
+          "at its two edges x = -0.5 and x = 0.5, which move towards each other at 0.4 m/s "
+          "for 1 s (constant velocities: scenes have no rotating nodes for a twist), its "
+          "middle thrown up and to the side (2 m/s up, 1.5 m/s towards -x, sine profile): it "
+          "buckles up into a leaning loop that the edges narrow to 0.2 m, and the loop falls "
+          "over onto the cloth. "
+          "problems/self_contact/generate.py.",
+          pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 400, moving=moving,
+          velocities=velocities)
 
 
 if __name__ == "__main__":
