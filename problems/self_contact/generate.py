@@ -84,14 +84,16 @@ def main():
     n = 12
     ground = lambda y: {"type": "plane", "point": [0, y, 0], "normal": [0, 1, 0]}
 
-    # 1. A cloth folded in half (the upper half 4 cm above the lower one,
-    # rest lengths those of the flat cloth) falls onto a sphere: the lower
-    # half drapes over the sphere and the upper half lands on it.
+    # 1. A cloth folded in half falls onto a sphere: the lower half drapes
+    # over the sphere and the upper half lands on it. The crease is one cell
+    # wide and unstrained: the upper half is shifted by half a cell, at height
+    # sqrt(3)/2 a, so the crease's structural springs have length a and its
+    # diagonals a sqrt(2) (rest lengths those of the flat cloth).
     m = 16
     size = 1.2
     a = size / (m - 1)
     half = m // 2
-    gap = 0.04
+    gap = math.sqrt(3.0) / 2.0 * a
 
     def folded(u, v):
         i = round(u / a)
@@ -102,8 +104,8 @@ def main():
     pos, spr = cloth(m, size, folded, rest=True, crease=half)
     scene("cloth_sphere_fold",
           "3D self-contact: a 1.2 m x 1.2 m cloth (16 x 16 nodes, one triangulation, 0.29 kg) "
-          "folded in half (upper half 4 cm above the lower one, shifted half a cell; rest "
-          "lengths those of the flat cloth, no bending springs across the crease) falls from y = 0.3 onto a sphere of radius 0.2 at "
+          "folded in half (upper half 6.9 cm above the lower one, shifted half a cell: an "
+          "unstrained one-cell crease; no bending springs across it) falls from y = 0.3 onto a sphere of radius 0.2 at "
           "the origin, ground y = -0.3: the lower half drapes over the sphere and the upper "
           "half lands on it. problems/self_contact/generate.py.",
           pos, spr, [0.2 * 1.44 / len(pos)] * len(pos),
