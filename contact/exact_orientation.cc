@@ -18,16 +18,19 @@ void TwoSum(double a, double b, double* x, double* y) {
   *y = (a - av) + (b - bv);
 }
 
-// e + b (e nonoverlapping, increasing magnitude).
+// e + b (e nonoverlapping, increasing magnitude), zero components dropped
+// (the rest keeps both properties).
 void Grow(Expansion* e, double b) {
   double q = b;
-  for (double& component : *e) {
+  size_t kept = 0;
+  for (size_t k = 0; k < e->size(); ++k) {
     double sum, error;
-    TwoSum(q, component, &sum, &error);
-    component = error;
+    TwoSum(q, (*e)[k], &sum, &error);
+    if (error != 0.0) (*e)[kept++] = error;
     q = sum;
   }
-  e->push_back(q);
+  e->resize(kept);
+  if (q != 0.0) e->push_back(q);
 }
 
 Expansion Difference(double a, double b) {
@@ -82,6 +85,8 @@ int ExactOrient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eige
   const double permanent = std::abs(ax) * (std::abs(bycz) + std::abs(bzcy)) +
                            std::abs(ay) * (std::abs(bzcx) + std::abs(bxcz)) +
                            std::abs(az) * (std::abs(bxcy) + std::abs(bycx));
+  // Every product exactly zero (no underflow: see the header): det = 0.
+  if (permanent == 0.0) return 0;
   const double bound = (7.0 + 56.0 * kEps) * kEps * permanent;
   if (det > bound || -det > bound) return SignOf(det);
   // Exact.
@@ -102,6 +107,7 @@ int ExactOrient2d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eige
   const double left = (b[i] - a[i]) * (c[j] - a[j]);
   const double right = (b[j] - a[j]) * (c[i] - a[i]);
   const double det = left - right;
+  if (left == 0.0 && right == 0.0) return 0;
   const double bound = (3.0 + 16.0 * kEps) * kEps * (std::abs(left) + std::abs(right));
   if (det > bound || -det > bound) return SignOf(det);
   const Expansion l = Product(Difference(b[i], a[i]), Difference(c[j], a[j]));

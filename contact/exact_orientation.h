@@ -14,7 +14,7 @@
 //  * adding a double b to an expansion e (components nonoverlapping, of
 //    increasing magnitude): carry q = b through the components, q, h_i =
 //    TwoSum(q, e_i), output h_1 .. h_m, q: again nonoverlapping and
-//    increasing (up to zero components), and exact;
+//    increasing (zero components dropped), and exact;
 //  * sums and products of expansions by repeated additions of their
 //    components' exact sums and TwoProducts.
 // The sign of an expansion is that of its largest nonzero component, the
