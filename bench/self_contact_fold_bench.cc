@@ -9,7 +9,9 @@
 // optimiser and prints iterations and wall time per step. Broad-phase cost:
 // profile with perf (docs in the commit), or see bench/broad_phase_bench.cc
 // for one pass on the same fold.
-//   self_contact_fold_bench [n=100] [steps=30] [d_hat=2e-3]
+//   self_contact_fold_bench [n=100] [steps=30] [d_hat=2e-3] [optimizer=projected_newton]
+// (Ceres's "newton" factorises with CXSparse here: at n = 100 its Cholesky
+// took minutes per step, 82 % of the time in cs_di_chol.)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -75,12 +77,13 @@ ipstep::Scene FoldedClothScene(int n, double d_hat) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress as it runs
   const int n = argc > 1 ? std::atoi(argv[1]) : 100;
   const int steps = argc > 2 ? std::atoi(argv[2]) : 30;
   const double d_hat = argc > 3 ? std::atof(argv[3]) : 2e-3;
   ipstep::SimulationOptions options;
   options.integrator.name = "backward_euler";
-  options.optimizer.optimizer = ipstep::ParseOptimizer("newton");
+  options.optimizer.optimizer = ipstep::ParseOptimizer(argc > 4 ? argv[4] : "projected_newton");
   options.optimizer.tolerance = 1e-5;
   options.max_substeps = 8;
   ipstep::Simulation sim(FoldedClothScene(n, d_hat), options);
