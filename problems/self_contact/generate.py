@@ -9,11 +9,19 @@ plus Hookean bending springs across two cells (not contact edges: they span a
 node). Parameters as problems/cloth_sphere.json: 0.2 kg per m^2, k = 2e3,
 bending 50, d_hat 5 mm, adaptive kappa.
 
-    python3 problems/self_contact/generate.py
+    python3 problems/self_contact/generate.py [--surface]
+
+--surface: also declare the contact surface ("surface": {"triangles": ...},
+two triangles per quad along the springs' diagonal), which the loader needs
+once scenes declare their collision mesh (main after the lead's collision-mesh
+change); without it the collision mesh is built from the springs' 3-cliques.
 """
 import json
 import math
 import os
+import sys
+
+SURFACE = "--surface" in sys.argv[1:]
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -57,8 +65,22 @@ def cloth(n, size, place, first=0, rest=False, crease=None):
     return positions, springs
 
 
+def triangles(n, first=0):
+    """The two triangles per quad of an n x n cloth (the diagonal (i, j) -
+    (i + 1, j + 1) of its shear springs)."""
+    def idx(i, j):
+        return first + j * n + i
+
+    out = []
+    for j in range(n - 1):
+        for i in range(n - 1):
+            out.append([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)])
+            out.append([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)])
+    return out
+
+
 def scene(name, description, positions, springs, masses, obstacles, steps, h=0.0025,
-          moving=None, velocities=None):
+          moving=None, velocities=None, surface=None):
     s = {
         "name": name,
         "description": description,
@@ -72,6 +94,8 @@ def scene(name, description, positions, springs, masses, obstacles, steps, h=0.0
     }
     if velocities:
         s["nodes"]["velocities"] = velocities
+    if SURFACE and surface:
+        s["surface"] = {"triangles": surface}
     if moving:
         s["moving"] = moving
     s["contact"] = {"dhat": 0.005, "self_contact": True, "obstacles": obstacles}
@@ -109,7 +133,8 @@ def main():
           "the origin, ground y = -0.3: the lower half drapes over the sphere and the upper "
           "half lands on it. problems/self_contact/generate.py.",
           pos, spr, [0.2 * 1.44 / len(pos)] * len(pos),
-          [{"type": "sphere", "center": [0, 0, 0], "radius": 0.2}, ground(-0.3)], 300)
+          [{"type": "sphere", "center": [0, 0, 0], "radius": 0.2}, ground(-0.3)], 300,
+          surface=triangles(m))
 
     # 2. Two cloths dropped onto a box: the upper one turned by 30 degrees
     # about y, 4 cm above the lower one.
@@ -124,7 +149,8 @@ def main():
           "upper cloth, turned by 30 degrees, starts 4 cm above the lower one and lands on it. "
           "problems/self_contact/generate.py.",
           pos_a + pos_b, spr_a + spr_b, masses,
-          [{"type": "box", "min": [-0.2, -0.3, -0.2], "max": [0.2, 0, 0.2]}, ground(-0.3)], 200)
+          [{"type": "box", "min": [-0.2, -0.3, -0.2], "max": [0.2, 0, 0.2]}, ground(-0.3)], 200,
+          surface=triangles(n) + triangles(n, first=n * n))
 
     # 3. A cloth held at two opposite edges that move towards each other,
     # its middle thrown upwards: it buckles up into a tall loop, which the
@@ -147,7 +173,7 @@ def main():
           "over onto the cloth. "
           "problems/self_contact/generate.py.",
           pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 400, moving=moving,
-          velocities=velocities)
+          velocities=velocities, surface=triangles(n))
 
 
 if __name__ == "__main__":
