@@ -105,8 +105,12 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
   }
   if (p.Has("self_contact")) {
     options.self_contact = p.Get("self_contact").Bool();
-    if (options.self_contact && dim != 2) {
-      p.Get("self_contact").Fail("self-contact is implemented in 2D only");
+    if (options.self_contact && dim == 3 && scene.surface.triangles.empty()) {
+      p.Get("self_contact")
+          .Fail(
+              "3D self-contact needs a surface of triangles (\"surface\": {\"triangles\": ...}, or "
+              "a "
+              "3D grid with structural springs)");
     }
   }
   if (options.obstacles.empty() && !options.self_contact) {
@@ -161,9 +165,9 @@ std::string BuildFriction(TermBuilder& builder, const json& parameters) {
 }  // namespace
 
 void RegisterContactEffects(EffectRegistry* registry) {
-  registry->Register("contact",
-                     "IPC barrier contact: obstacles (plane, sphere, box) and 2D self-contact",
-                     BuildContact);
+  registry->Register(
+      "contact", "IPC barrier contact: obstacles (plane, sphere, box) and self-contact (2D, 3D)",
+      BuildContact);
   registry->Register("friction", "smoothed dry friction on contacts (needs contact)",
                      BuildFriction);
 }

@@ -178,6 +178,57 @@ bool PointEdgeDistanceHessian(const Eigen::Vector2d& p, const Eigen::Vector2d& a
   return EnvelopeHessian<3, 2, 1>(w, Eigen::Vector3d(0.0, 1.0, -1.0), a - b, diff, hessian);
 }
 
+bool PointTriangleDistanceHessian(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                  const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                  Matrix12d* hessian) {
+  const Eigen::Vector3d wt = PointTriangleDistance(p, a, b, c).weights;
+  const Eigen::Vector3d* x[3] = {&a, &b, &c};
+  const Eigen::Vector3d diff = wt[0] * a + wt[1] * b + wt[2] * c - p;
+  // Over (p, a, b, c): p enters with weight -1 and no parameter.
+  const Eigen::Vector4d w(-1.0, wt[0], wt[1], wt[2]);
+  int positive[3], count = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (wt[k] > 0.0) positive[count++] = k;
+  }
+  if (count == 3) {
+    Eigen::Matrix<double, 4, 2> dw;
+    dw << 0.0, 0.0, -1.0, -1.0, 1.0, 0.0, 0.0, 1.0;
+    Eigen::Matrix<double, 3, 2> tangents;
+    tangents << b - a, c - a;
+    return EnvelopeHessian<4, 3, 2>(w, dw, tangents, diff, hessian);
+  }
+  if (count == 2) {
+    const int i = positive[0], j = positive[1];
+    Eigen::Vector4d dw = Eigen::Vector4d::Zero();
+    dw[1 + i] = -1.0;
+    dw[1 + j] = 1.0;
+    return EnvelopeHessian<4, 3, 1>(w, dw, *x[j] - *x[i], diff, hessian);
+  }
+  return EnvelopeHessian<4, 3, 0>(w, {}, {}, diff, hessian);
+}
+
+bool EdgeEdgeDistanceHessian(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
+                             const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
+                             Matrix12d* hessian) {
+  const SegmentSegmentDistanceResult result = SegmentSegmentDistance(a0, a1, b0, b1);
+  const double s = result.s, t = result.t;
+  const Eigen::Vector4d w(1.0 - s, s, -(1.0 - t), -t);
+  const Eigen::Vector3d diff = a0 + s * (a1 - a0) - b0 - t * (b1 - b0);
+  const Eigen::Vector4d dw_s(-1.0, 1.0, 0.0, 0.0), dw_t(0.0, 0.0, 1.0, -1.0);
+  const Eigen::Vector3d t_s = a1 - a0, t_t = b0 - b1;
+  const bool free_s = Free(s), free_t = Free(t);
+  if (free_s && free_t) {
+    Eigen::Matrix<double, 4, 2> dw;
+    dw << dw_s, dw_t;
+    Eigen::Matrix<double, 3, 2> tangents;
+    tangents << t_s, t_t;
+    return EnvelopeHessian<4, 3, 2>(w, dw, tangents, diff, hessian);
+  }
+  if (free_s) return EnvelopeHessian<4, 3, 1>(w, dw_s, t_s, diff, hessian);
+  if (free_t) return EnvelopeHessian<4, 3, 1>(w, dw_t, t_t, diff, hessian);
+  return EnvelopeHessian<4, 3, 0>(w, {}, {}, diff, hessian);
+}
+
 bool ObstacleDistanceHessian(const Obstacle& obstacle, const Eigen::Vector3d& x, double t,
                              Eigen::Matrix3d* hessian) {
   const Eigen::Vector3d y = x - obstacle.velocity * t;

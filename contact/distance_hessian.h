@@ -55,7 +55,15 @@
 //    p - t (q - p), w = (1 - s, s), dw/ds = (-1, 1), dw/dt = 0,
 //    T = [b - a, -(q - p)], each of s, t free strictly inside (0, 1);
 //  * 2D point p vs segment [a, b], all three moving: P = p - a - alpha (b - a),
-//    w = (1, -(1 - alpha), -alpha), dw/dalpha = (0, 1, -1), T = -(b - a).
+//    w = (1, -(1 - alpha), -alpha), dw/dalpha = (0, 1, -1), T = -(b - a);
+//  * 3D self-contact, all four points moving (contact/pairs/):
+//    point p vs triangle [a, b, c]: P = w_a a + w_b b + w_c c - p, so the
+//    weights over (p, a, b, c) are (-1, w_a, w_b, w_c) with the free
+//    barycentric parameters of the triangle case above (dw of p is 0);
+//    segment [a0, a1] vs segment [b0, b1]: P = a0 + s (a1 - a0) - b0 -
+//    t (b1 - b0), w = (1 - s, s, -(1 - t), -t), dw/ds = (-1, 1, 0, 0),
+//    dw/dt = (0, 0, 1, -1), T = [a1 - a0, -(b1 - b0)], each of s, t free
+//    strictly inside (0, 1).
 //
 // All positions are 3D (2D callers pass z = 0: the Hessian of the restriction
 // to the plane is the top-left 2 x 2 block of each 3 x 3 vertex block). Hessians
@@ -73,6 +81,7 @@ namespace ipstep {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
 
 // Eigenvalues of f_ll below this fraction of its largest are treated as zero.
 constexpr double kSingularFraction = 1e-14;
@@ -105,6 +114,17 @@ bool SegmentSegmentDistanceHessian(const Eigen::Vector3d& a0, const Eigen::Vecto
 // (p, a, b), 2 coordinates each.
 bool PointEdgeDistanceHessian(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                               const Eigen::Vector2d& b, Matrix6d* hessian);
+
+// Point p against the triangle [a, b, c], all moving (PointTriangleDistance):
+// over (p, a, b, c).
+bool PointTriangleDistanceHessian(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                  const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                  Matrix12d* hessian);
+// Segment [a0, a1] against segment [b0, b1], all moving
+// (SegmentSegmentDistance): over (a0, a1, b0, b1).
+bool EdgeEdgeDistanceHessian(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
+                             const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
+                             Matrix12d* hessian);
 
 // Obstacles at time t (their features fixed): the Hessians of the distances of
 // Obstacle (contact/obstacle.h) with the same arguments.

@@ -1,9 +1,11 @@
 #include "contact/pair_kinds.h"
 
+#include "contact/pairs/edge_edge_pairs.h"
 #include "contact/pairs/edge_obstacle_pairs.h"
 #include "contact/pairs/mesh_obstacle_pairs.h"
 #include "contact/pairs/node_obstacle_pairs.h"
 #include "contact/pairs/point_edge_pairs.h"
+#include "contact/pairs/point_triangle_pairs.h"
 
 namespace ipstep {
 
@@ -15,6 +17,8 @@ std::vector<std::unique_ptr<PairSet>> MakePairSets(const PairSetContext& context
   sets.push_back(std::make_unique<MeshObstaclePairs>(context));
   if (self_contact) {
     if (context.dimension == 2) sets.push_back(std::make_unique<PointEdgePairs>(context, initial));
+    if (context.dimension == 3) sets.push_back(std::make_unique<PointTrianglePairs>(context));
+    if (context.dimension == 3) sets.push_back(std::make_unique<EdgeEdgePairs>(context, initial));
   }
   return sets;
 }
