@@ -1,6 +1,6 @@
 // An n x n cloth (1 m, 0.2 kg, one triangulation: structural springs and one
 // shear diagonal per quad, squared strain k = 2e3, Hookean bending k = 50)
-// folded on itself: the columns i < n/2 lie flat at y = 0 on the ground, the
+// folded on itself: the columns i < n/2 lie flat at y = 0, held fixed, the
 // others are mirrored back over them, shifted by half a cell (nodes over
 // faces) at height sqrt(3)/2 a, so that the one-cell crease is unstrained
 // (rest lengths those of the flat grid; no bending springs across the
@@ -63,13 +63,22 @@ ipstep::Scene FoldedClothScene(int n, double d_hat) {
       if (j + 2 < n) add(id(i, j), id(i, j + 2), SpringModel::kHookean, 50.0, 2 * a);
     }
   }
+  // The contact surface: two triangles per quad along the shear spring.
+  s.surface.declared = true;
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      s.surface.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.surface.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  // The bottom layer is held (no ground: its barrier against ~n^2/2 resting
+  // nodes made every step's Newton iterations, not the self-contact).
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < half; ++i) s.pinned.push_back(id(i, j));
+  }
   s.gravity = {0.0, -9.81, 0.0};
   s.effects = {"gravity", "springs", "contact"};
-  s.effect_parameters["contact"] = {
-      {"dhat", d_hat},
-      {"self_contact", true},
-      {"obstacles",
-       {{{"type", "plane"}, {"point", {0.0, -d_hat, 0.0}}, {"normal", {0.0, 1.0, 0.0}}}}}};
+  s.effect_parameters["contact"] = {{"dhat", d_hat}, {"self_contact", true}};
   s.time_step = 1.0 / 400.0;
   return s;
 }
