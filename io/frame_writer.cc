@@ -9,6 +9,7 @@
 #include "io/obstacle_mesh.h"
 #include "io/surface_triangles.h"
 #include "io/vtk_unstructured_grid.h"
+#include "problems/solid.h"
 
 namespace ipstep {
 namespace {
@@ -17,6 +18,20 @@ Eigen::Vector3d NodePosition(const Eigen::VectorXd& x, int dimension, int node) 
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int k = 0; k < dimension; ++k) p[k] = x[dimension * node + k];
   return p;
+}
+
+// The triangles drawn: a 2D solid's elements, a 3D solid's boundary (its
+// declared surface), otherwise the triangles filling the spring network.
+std::vector<std::array<int, 3>> PictureTriangles(const Scene& scene) {
+  if (scene.solid && scene.dimension == 2) {
+    std::vector<std::array<int, 3>> triangles;
+    for (const std::array<int, 4>& e : scene.solid->mesh.elements) {
+      triangles.push_back({e[0], e[1], e[2]});
+    }
+    return triangles;
+  }
+  if (scene.solid) return scene.surface.triangles;
+  return SurfaceTriangles(scene);
 }
 
 std::string Numbered(const char* stem, int frame) {
@@ -38,8 +53,8 @@ FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
   series_ =
       std::make_unique<PvdSeries>((std::filesystem::path(directory) / "run.pvd").string(), flag);
   const Scene& scene = sim.scene();
-  triangles_ = SurfaceTriangles(scene);
-  std::vector<bool> has_spring(scene.num_nodes(), false);
+  triangles_ = PictureTriangles(scene);
+  std::vector<bool> has_spring(scene.num_nodes(), scene.solid != nullptr);
   for (const Spring& s : scene.springs) has_spring[s.i] = has_spring[s.j] = true;
   for (int i = 0; i < scene.num_nodes(); ++i) {
     if (!has_spring[i]) particles_.push_back(i);
