@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <utility>
 
 #include "contact/barrier.h"
 #include "contact/distance_hessian.h"
@@ -200,6 +202,24 @@ bool SelfFriction::Evaluate(double const* const* x, double* residuals, double** 
     block = (alpha_[k] * context_->velocity_slope) * base;
   }
   return true;
+}
+
+int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepContext* step,
+                         const char* family, const FrictionSettings& friction,
+                         IncrementalPotential* potential) {
+  if (!(friction.mu > 0.0)) return 0;
+  for (const SelfFrictionLag& lag : lags) {
+    Term term;
+    term.kind = TermKind::kDissipation;
+    term.family = family;
+    term.impulsive = true;
+    term.nodes.assign(lag.nodes.begin(), lag.nodes.end());
+    term.cost = std::make_unique<SelfFriction>(step, lag.nodes.data(), lag.alpha.data(),
+                                               lag.tangents, friction.epsilon_v);
+    term.loss = std::make_unique<FrictionLoss>(friction.mu * lag.normal_force);
+    potential->AddTerm(std::move(term));
+  }
+  return static_cast<int>(lags.size());
 }
 
 }  // namespace ipstep

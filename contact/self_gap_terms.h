@@ -49,6 +49,11 @@
 #include <ceres/cost_function.h>
 #include <Eigen/Core>
 
+#include <array>
+#include <vector>
+
+#include "contact/pair_set.h"
+#include "core/incremental_potential.h"
 #include "core/step_context.h"
 
 namespace ipstep {
@@ -100,5 +105,22 @@ class SelfFriction : public ceres::CostFunction {
   Eigen::Matrix<double, 3, 2> tangents_;
   double eps_v_;
 };
+
+// A 3D self-contact's friction lagged at the start of the step: the relative
+// velocity sum_i alpha_i v_i of its four nodes in the tangent basis, and the
+// normal force kappa w (-B'(d)).
+struct SelfFrictionLag {
+  std::array<int, 4> nodes;
+  std::array<double, 4> alpha;
+  Eigen::Matrix<double, 3, 2> tangents;
+  double normal_force;
+};
+
+// One SelfFriction term per lag (kind kDissipation, impulsive, family
+// `family`, FrictionLoss mu lambda); returns the number of lags, 0 (no
+// terms) when mu is 0. Shared by the point-triangle and edge-edge kinds.
+int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepContext* step,
+                         const char* family, const FrictionSettings& friction,
+                         IncrementalPotential* potential);
 
 }  // namespace ipstep

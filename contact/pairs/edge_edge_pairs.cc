@@ -206,7 +206,7 @@ void EdgeEdgePairs::LagFriction(const double* x, double t) {
   for (const Pair& pair : pairs_.pairs()) {
     const auto& u = edges[pair.e];
     const auto& v = edges[pair.f];
-    Friction lag;
+    SelfFrictionLag lag;
     lag.nodes = {u[0], u[1], v[0], v[1]};
     Eigen::Vector3d p[4];
     for (int k = 0; k < 4; ++k) p[k] = SelfContactMesh::Vertex(x, lag.nodes[k]);
@@ -226,19 +226,8 @@ void EdgeEdgePairs::LagFriction(const double* x, double t) {
 
 int EdgeEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
                                     IncrementalPotential* potential) const {
-  if (!(friction.mu > 0.0)) return 0;
-  for (const Friction& lag : friction_) {
-    Term term;
-    term.kind = TermKind::kDissipation;
-    term.family = context_.friction_family;
-    term.impulsive = true;
-    term.nodes.assign(lag.nodes.begin(), lag.nodes.end());
-    term.cost = std::make_unique<SelfFriction>(context_.step, lag.nodes.data(), lag.alpha.data(),
-                                               lag.tangents, friction.epsilon_v);
-    term.loss = std::make_unique<FrictionLoss>(friction.mu * lag.normal_force);
-    potential->AddTerm(std::move(term));
-  }
-  return static_cast<int>(friction_.size());
+  return AddSelfFrictionTerms(friction_, context_.step, context_.friction_family, friction,
+                              potential);
 }
 
 }  // namespace ipstep

@@ -24,6 +24,7 @@
 
 #include "contact/pair_set.h"
 #include "contact/pairs/self_contact_mesh.h"
+#include "contact/self_gap_terms.h"
 #include "contact/sorted_pairs.h"
 
 namespace ipstep {
@@ -74,19 +75,12 @@ class EdgeEdgePairs : public PairSet {
   template <class F>
   void ForEachCandidate(const double* a, const double* b, double grow, const F& f) const;
 
-  struct Friction {
-    std::array<int, 4> nodes;
-    std::array<double, 4> alpha;
-    Eigen::Matrix<double, 3, 2> tangents;
-    double normal_force;
-  };
-
   PairSetContext context_;
   SelfContactMesh geometry_;
   bool active_ = false;
   std::vector<double> rest_length2_;  // per edge
   SortedPairs<Pair> pairs_;
-  std::vector<Friction> friction_;
+  std::vector<SelfFrictionLag> friction_;
   mutable Bvh bvh_;
   mutable std::vector<int> ids_;
 };

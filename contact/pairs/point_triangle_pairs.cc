@@ -216,7 +216,7 @@ void PointTrianglePairs::LagFriction(const double* x, double t) {
     const double d = Distance(x, pair, grad, &w);
     if (!(d > 0.0 && d < d_hat)) continue;
     const auto& f = context_.mesh->faces[pair.face];
-    Friction lag;
+    SelfFrictionLag lag;
     lag.nodes = {pair.node, f[0], f[1], f[2]};
     lag.alpha = {1.0, -w[0], -w[1], -w[2]};
     lag.tangents = SelfTangentBasis(grad[0]);  // grad_p: unit, from the face to the node
@@ -228,19 +228,8 @@ void PointTrianglePairs::LagFriction(const double* x, double t) {
 
 int PointTrianglePairs::AddFrictionTerms(const FrictionSettings& friction,
                                          IncrementalPotential* potential) const {
-  if (!(friction.mu > 0.0)) return 0;
-  for (const Friction& lag : friction_) {
-    Term term;
-    term.kind = TermKind::kDissipation;
-    term.family = context_.friction_family;
-    term.impulsive = true;
-    term.nodes.assign(lag.nodes.begin(), lag.nodes.end());
-    term.cost = std::make_unique<SelfFriction>(context_.step, lag.nodes.data(), lag.alpha.data(),
-                                               lag.tangents, friction.epsilon_v);
-    term.loss = std::make_unique<FrictionLoss>(friction.mu * lag.normal_force);
-    potential->AddTerm(std::move(term));
-  }
-  return static_cast<int>(friction_.size());
+  return AddSelfFrictionTerms(friction_, context_.step, context_.friction_family, friction,
+                              potential);
 }
 
 }  // namespace ipstep
