@@ -24,6 +24,11 @@ Eigen::Vector3d RestPosition(const Scene& scene, int node) {
 
 }  // namespace
 
+int NodeSlot(const CollisionMesh& mesh, int node) {
+  return static_cast<int>(std::lower_bound(mesh.nodes.begin(), mesh.nodes.end(), node) -
+                          mesh.nodes.begin());
+}
+
 CollisionMesh BuildCollisionMesh(const Scene& scene) {
   const Surface& surface = scene.surface;
   if (!surface.declared) {

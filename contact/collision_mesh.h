@@ -33,6 +33,9 @@ struct CollisionMesh {
   std::vector<double> face_weights;       // per entry of `faces`
 };
 
+// Index of contact node `node` in mesh.nodes (ascending; binary search).
+int NodeSlot(const CollisionMesh& mesh, int node);
+
 // Throws InputError (key "surface") when the scene has springs between listed
 // nodes but declares no surface, or a triangle or edge is degenerate at rest.
 CollisionMesh BuildCollisionMesh(const Scene& scene);

@@ -12,14 +12,8 @@
 namespace ipstep {
 
 EdgeObstaclePairs::EdgeObstaclePairs(const PairSetContext& context) : c_(context) {
-  const std::vector<int>& nodes = c_.mesh->nodes;
   for (const auto& e : c_.mesh->edges) {
-    std::array<int, 2> slots{};
-    for (int end = 0; end < 2; ++end) {
-      slots[end] =
-          static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), e[end]) - nodes.begin());
-    }
-    edge_slots_.push_back(slots);
+    edge_slots_.push_back({NodeSlot(*c_.mesh, e[0]), NodeSlot(*c_.mesh, e[1])});
   }
 }
 

@@ -17,11 +17,6 @@ namespace ipstep {
 
 namespace {
 
-// Slot (index into the ascending `nodes`) of a node.
-int SlotOf(const std::vector<int>& nodes, int node) {
-  return static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
-}
-
 // Merges the sorted `added` into the sorted `pairs` (skipping those already
 // there), inserting lag(pair) into the parallel `lags`; true if any was new.
 template <class Pair, class Lag, class Value>
@@ -79,11 +74,11 @@ MeshObstaclePairs::MeshObstaclePairs(const PairSetContext& context)
                (o.NumBoxEdges() > 0 && !surface_->edges.empty());
   }
   for (const auto& f : surface_->faces) {
-    face_slots_.push_back({SlotOf(surface_->nodes, f[0]), SlotOf(surface_->nodes, f[1]),
-                           SlotOf(surface_->nodes, f[2])});
+    face_slots_.push_back(
+        {NodeSlot(*surface_, f[0]), NodeSlot(*surface_, f[1]), NodeSlot(*surface_, f[2])});
   }
   for (const auto& e : surface_->edges) {
-    edge_slots_.push_back({SlotOf(surface_->nodes, e[0]), SlotOf(surface_->nodes, e[1])});
+    edge_slots_.push_back({NodeSlot(*surface_, e[0]), NodeSlot(*surface_, e[1])});
   }
 }
 

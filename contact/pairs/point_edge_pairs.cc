@@ -24,11 +24,7 @@ PointEdgePairs::PointEdgePairs(const PairSetContext& context, const double* init
 
 bool PointEdgePairs::HasFreeNode(const Pair& pair) const {
   const auto& e = c_.mesh->edges[pair.edge];
-  const std::vector<int>& nodes = c_.mesh->nodes;
-  auto free = [&](int node) {
-    const auto it = std::lower_bound(nodes.begin(), nodes.end(), node);
-    return (*c_.node_free)[it - nodes.begin()];
-  };
+  auto free = [&](int node) { return (*c_.node_free)[NodeSlot(*c_.mesh, node)]; };
   return (*c_.node_free)[pair.slot] || free(e[0]) || free(e[1]);
 }
 
