@@ -1,14 +1,16 @@
 // An n x n cloth (1 m, 0.2 kg, one triangulation: structural springs and one
 // shear diagonal per quad, squared strain k = 2e3, Hookean bending k = 50)
 // folded on itself: the columns i < n/2 lie flat at y = 0, held fixed, the
-// others are mirrored back over them, shifted by half a cell (nodes over
-// faces) at height sqrt(3)/2 a, so that the one-cell crease is unstrained
-// (rest lengths those of the flat grid; no bending springs across the
-// crease). Gravity drops the top layer onto the bottom one (after ~15 steps):
-// about n^2 / 2 nodes in self-contact. Runs `steps` steps of backward Euler with the Newton
-// optimiser and prints iterations and wall time per step. Broad-phase cost:
-// profile with perf (docs in the commit), or see bench/broad_phase_bench.cc
-// for one pass on the same fold.
+// others are mirrored back over them, shifted by half a cell along x (nodes
+// over the bottom layer's edge midpoints) at height sqrt(3)/2 a, so that the
+// one-cell crease is unstrained (its springs have their flat-grid lengths; no
+// bending springs across the crease). Gravity drops the top layer onto the
+// bottom one (contact after ~15 steps at h = 1/400 s for n = 100): about
+// n^2 / 2 nodes in self-contact. Runs `steps` steps of backward Euler and
+// prints per step the iterations, wall time and its broad-phase share (the
+// BVH builds and queries of the point-triangle and edge-edge kinds, the
+// contact filter's `broad_phase_ms`), then the averages over the steps with
+// self-contact.
 //   self_contact_fold_bench [n=100] [steps=30] [d_hat=2e-3] [optimizer=projected_newton]
 // (Ceres's "newton" factorises with CXSparse here: at n = 100 its Cholesky
 // took minutes per step, 82 % of the time in cs_di_chol.)
@@ -41,7 +43,7 @@ ipstep::Scene FoldedClothScene(int n, double d_hat) {
       if (i < half) {
         s.positions.insert(s.positions.end(), {i * a, 0.0, j * a});
       } else {
-        s.positions.insert(s.positions.end(), {(n - 1 - i) * a + 0.5 * a, gap, j * a + 0.5 * a});
+        s.positions.insert(s.positions.end(), {(n - 1 - i) * a + 0.5 * a, gap, j * a});
       }
       s.masses.push_back(0.2 / (n * n));
     }
@@ -97,18 +99,40 @@ int main(int argc, char** argv) {
   options.max_substeps = 8;
   ipstep::Simulation sim(FoldedClothScene(n, d_hat), options);
   for (const std::string& line : sim.effect_summaries()) std::printf("%s\n", line.c_str());
-  double total = 0.0;
-  int iterations = 0;
+  double total = 0.0, total_broad = 0.0, contact_total = 0.0, contact_broad = 0.0;
+  int iterations = 0, contact_iterations = 0, contact_steps = 0, failed = 0;
   for (int step = 0; step < steps; ++step) {
     const ipstep::StepReport r = sim.Step();
+    const double contacts = r.diagnostics.size() > 1 ? r.diagnostics[1] : 0.0;
+    const double broad_ms = r.diagnostics.size() > 2 ? r.diagnostics[2] : 0.0;
     total += r.wall_seconds;
+    total_broad += 1e-3 * broad_ms;
     iterations += r.iterations;
-    std::printf("step %d: %s, %d iterations, %.0f ms, min_distance %.3g, active_contacts %.0f\n",
-                r.step, r.status.c_str(), r.iterations, 1e3 * r.wall_seconds,
-                r.diagnostics.size() > 0 ? r.diagnostics[0] : -1.0,
-                r.diagnostics.size() > 1 ? r.diagnostics[1] : -1.0);
+    failed += r.converged ? 0 : 1;
+    if (contacts > 0.0) {
+      ++contact_steps;
+      contact_total += r.wall_seconds;
+      contact_broad += 1e-3 * broad_ms;
+      contact_iterations += r.iterations;
+    }
+    std::printf(
+        "step %d: %s, %d iterations, %.0f ms (broad phase %.0f ms), min_distance %.3g, "
+        "active_contacts %.0f\n",
+        r.step, r.status.c_str(), r.iterations, 1e3 * r.wall_seconds, broad_ms,
+        r.diagnostics.size() > 0 ? r.diagnostics[0] : -1.0, contacts);
   }
-  std::printf("%d x %d fold: %.1f iterations/step, %.0f ms/step\n", n, n,
-              double(iterations) / steps, 1e3 * total / steps);
+  std::printf(
+      "%d x %d fold, %d steps, %d failed: %.1f iterations/step, %.0f ms/step (broad phase "
+      "%.0f ms)\n",
+      n, n, steps, failed, double(iterations) / steps, 1e3 * total / steps,
+      1e3 * total_broad / steps);
+  if (contact_steps > 0) {
+    std::printf(
+        "steps with self-contact (%d): %.1f iterations/step, %.0f ms/step (broad phase "
+        "%.0f ms, %.0f %%)\n",
+        contact_steps, double(contact_iterations) / contact_steps,
+        1e3 * contact_total / contact_steps, 1e3 * contact_broad / contact_steps,
+        100.0 * contact_broad / contact_total);
+  }
   return 0;
 }

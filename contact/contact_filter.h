@@ -73,6 +73,8 @@ class ContactFilter : public StepFilter {
   void BeginStep(const double* x_n) override;
   bool RefreshTerms(const double* x) override;
   std::vector<std::string> DiagnosticNames() const override;
+  // min_distance [m], active_contacts, broad_phase_ms (the pair kinds' broad
+  // phase since the step, or its last substep, began: PairSet::BroadPhaseSeconds).
   std::vector<double> Diagnostics(const double* x) const override;
   // What this filter put into the barrier energy over the step: at BeginStep,
   // the change of U_b(x_n, t_n) by the step's stiffness and pairs (adaptive
@@ -114,6 +116,7 @@ class ContactFilter : public StepFilter {
   std::string Summary() const;
 
  private:
+  double BroadPhaseSeconds() const;
   // Smallest TimeOfImpact of the kinds (PairSet::kNoImpact if none).
   double Sweep(const double* a, const double* b, double t_a, double t_b) const;
   bool ExtendPairs(const CandidateRegion& region);
@@ -135,7 +138,8 @@ class ContactFilter : public StepFilter {
   double margin_;                // smallest admissible gap
   AdaptiveKappa kappa_;
   ObstacleTime time_;
-  double begin_energy_input_ = 0.0;  // PrescribedWork
+  double begin_energy_input_ = 0.0;    // PrescribedWork
+  double broad_phase_at_begin_ = 0.0;  // BroadPhaseSeconds() at BeginStep [s]
   Eigen::VectorXd accepted_;
   int lags_ = 0;  // closest-point re-lags this step
 

@@ -138,6 +138,11 @@ class PairSet {
   virtual void SaveLags() {}
   virtual void RestoreLags() {}
 
+  // Wall time spent in the broad phase (tree builds and box queries, not the
+  // exact distances or impact times of the candidates it returns) since the
+  // set was made [s]; 0 for kinds without one (they test every combination).
+  virtual double BroadPhaseSeconds() const { return 0.0; }
+
   // Friction of the active pairs within d_hat at x, obstacle time t: lags the
   // normal force kappa w (-B'(d)) and the tangent basis.
   virtual void LagFriction(const double* x, double t) {

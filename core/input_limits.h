@@ -27,6 +27,11 @@ constexpr double kMinLength = 1e-9;
 constexpr double kMaxLength = 1e7;
 // Every velocity component: initial and prescribed velocities, obstacles [m/s].
 constexpr double kMaxSpeed = 1e6;
+// Every component of a moving node's angular velocity [rad/s] (|ω| r stays
+// within kMaxSpeed for r up to 1 m).
+constexpr double kMaxAngularVelocity = 1e6;
+// Durations such as a moving node's "until" [s]: kMaxSteps steps of kMaxTimeStep.
+constexpr double kMaxDuration = 1e10;
 // Every gravity component [m/s²] (10^5 g).
 constexpr double kMaxAcceleration = 1e6;
 // The mass of each node [kg] (also when derived from total_mass or density):

@@ -6,12 +6,14 @@
 
 #include <Eigen/Core>
 
+#include "core/prescribed_motion.h"
+
 namespace ipstep {
 
 enum class NodeKind {
   kFree,    // unknown of the step
   kPinned,  // held at its initial position
-  kMoving,  // moved along a prescribed constant velocity (moving Dirichlet)
+  kMoving,  // moved by its prescribed motion (moving Dirichlet: translation, rotation)
 };
 
 struct State {
@@ -23,16 +25,21 @@ struct State {
   Eigen::VectorXd a;     // accelerations at `time` (Newmark)
   Eigen::VectorXd mass;  // per node
   std::vector<NodeKind> kind;
-  Eigen::VectorXd x0;                   // initial positions (pinned and moving nodes follow them)
-  Eigen::VectorXd prescribed_velocity;  // per node, zero unless kMoving
+  Eigen::VectorXd x0;  // initial positions (pinned and moving nodes follow them)
+  // Per node; the zero motion unless kMoving (core/prescribed_motion.h).
+  std::vector<PrescribedMotion> motion;
 
   int num_nodes() const { return static_cast<int>(mass.size()); }
   int num_dofs() const { return static_cast<int>(x.size()); }
   bool is_free(int node) const { return kind[node] == NodeKind::kFree; }
   int num_free_nodes() const;
 
-  // Position of a constrained node at time t (x0 + prescribed_velocity * t).
+  // Positions / velocities of the constrained nodes at time t (their
+  // PrescribedMotion of x0); free nodes' entries are left alone.
   void PrescribedPositions(double t, Eigen::VectorXd* positions) const;
+  void PrescribedVelocities(double t, Eigen::VectorXd* velocities) const;
+  // Some node moves (the energy balance then counts the work done on it).
+  bool has_prescribed_motion() const;
   // Kinetic energy 1/2 sum m_i |v_i|^2 over all nodes.
   double KineticEnergy() const;
 };

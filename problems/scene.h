@@ -4,12 +4,15 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "core/prescribed_motion.h"
 
 namespace ipstep {
 
@@ -33,10 +36,19 @@ struct Spring {
 
 // A node moved along a prescribed constant velocity (moving Dirichlet condition):
 // x(t) = x(0) + velocity * t.
+// A node moved rigidly (core/prescribed_motion.h): translated by `velocity` and
+// turned by `angular_velocity` about `center` (which moves with the
+// velocity), until `until`, after which it holds still.
 struct MovingNode {
   int node = 0;
-  std::vector<double> velocity;  // size dimension [m/s]
+  std::vector<double> velocity;            // size dimension [m/s]
+  std::vector<double> angular_velocity{};  // empty (none), 1 (2D, about z) or 3 (3D) [rad/s]
+  std::vector<double> center{};            // size dimension with angular_velocity [m]
+  double until = std::numeric_limits<double>::infinity();  // [s]
 };
+
+// The node's motion in the simulation's terms (3-vectors, 2D padded with z = 0).
+PrescribedMotion MotionOf(const MovingNode& moving, int dimension);
 
 // Rayleigh dissipation R = 1/2 v^T B v with
 // B = mass_proportional * M + stiffness_proportional * K_springs (on spring length rates).

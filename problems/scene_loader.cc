@@ -907,10 +907,10 @@ class SceneParser {
     auto moving = root.Find("moving");
     if (!moving) return;
     for (const JsonNode& entry : moving->Elements()) {
-      entry.ExpectObject({"node", "velocity"});
+      entry.ExpectObject({"node", "velocity", "angular_velocity", "center", "until"});
       const JsonNode reference = entry.Get("node");
       const std::vector<int> nodes = ReadNodeReference(reference);
-      const std::vector<double> velocity = entry.Get("velocity").Velocity(dim());
+      MovingNode motion = ReadMotion(entry);
       for (int node : nodes) {
         if (pinned_by_.count(node) != 0) {
           reference.Fail("node " + std::to_string(node) + " is pinned by " + pinned_by_[node] +
@@ -921,9 +921,38 @@ class SceneParser {
                          moving_by_[node]);
         }
         moving_by_[node] = entry.path();
-        scene_.moving.push_back(MovingNode{node, velocity});
+        motion.node = node;
+        scene_.moving.push_back(motion);
       }
     }
+  }
+
+  // A moving entry's rigid motion (problems/scene.h MovingNode): a velocity,
+  // an angular velocity about a centre, or both; optionally until a time.
+  MovingNode ReadMotion(const JsonNode& entry) const {
+    MovingNode motion;
+    if (!entry.Has("velocity") && !entry.Has("angular_velocity")) {
+      entry.Fail(
+          "a moving entry needs \"velocity\", \"angular_velocity\" (with \"center\") "
+          "or both");
+    }
+    motion.velocity = std::vector<double>(dim(), 0.0);
+    if (auto velocity = entry.Find("velocity")) motion.velocity = velocity->Velocity(dim());
+    if (auto omega = entry.Find("angular_velocity")) {
+      if (dim() == 2) {
+        motion.angular_velocity = {
+            omega->InRange(-limits::kMaxAngularVelocity, limits::kMaxAngularVelocity, "rad/s")};
+      } else {
+        motion.angular_velocity = omega->Vector(3, limits::kMaxAngularVelocity, "rad/s");
+      }
+      motion.center = entry.Get("center").Position(dim());
+    } else if (entry.Has("center")) {
+      entry.Get("center").Fail("a centre without \"angular_velocity\" has no effect");
+    }
+    if (auto until = entry.Find("until")) {
+      motion.until = until->InRange(0.0, limits::kMaxDuration, "s", /*min_open=*/true);
+    }
+    return motion;
   }
 
   // Pinned nodes rest and moving nodes move at their prescribed velocity; a
@@ -946,7 +975,11 @@ class SceneParser {
     const std::vector<double> zero(dim(), 0.0);
     for (const auto& [node, path] : pinned_by_) set_velocity(node, zero, "pinned by " + path);
     for (const MovingNode& moving : scene_.moving) {
-      set_velocity(moving.node, moving.velocity, "moving by " + moving_by_[moving.node]);
+      Eigen::Vector3d x0 = Eigen::Vector3d::Zero();
+      for (int k = 0; k < dim(); ++k) x0[k] = scene_.positions[dim() * moving.node + k];
+      const Eigen::Vector3d v0 = MotionOf(moving, dim()).Velocity(x0, 0.0);
+      set_velocity(moving.node, std::vector<double>(v0.data(), v0.data() + dim()),
+                   "moving by " + moving_by_[moving.node]);
     }
   }
 

@@ -58,17 +58,14 @@ void Simulation::BuildState() {
   state_.a = Eigen::VectorXd::Zero(dim * n);
   state_.mass = Eigen::Map<const Eigen::VectorXd>(scene_.masses.data(), n);
   state_.x0 = state_.x;
-  state_.prescribed_velocity = Eigen::VectorXd::Zero(dim * n);
+  state_.motion.assign(n, PrescribedMotion());
   state_.kind.assign(n, NodeKind::kFree);
   for (int i : scene_.pinned) state_.kind[i] = NodeKind::kPinned;
   for (const MovingNode& m : scene_.moving) {
     state_.kind[m.node] = NodeKind::kMoving;
-    for (int k = 0; k < dim; ++k) state_.prescribed_velocity[dim * m.node + k] = m.velocity[k];
+    state_.motion[m.node] = MotionOf(m, dim);
   }
-  for (int i = 0; i < n; ++i) {
-    if (!state_.is_free(i))
-      state_.v.segment(dim * i, dim) = state_.prescribed_velocity.segment(dim * i, dim);
-  }
+  state_.PrescribedVelocities(0.0, &state_.v);
   gravity_ = Eigen::VectorXd::Zero(dim);
   if (scene_.HasEffect("gravity")) {
     gravity_ = Eigen::Map<const Eigen::VectorXd>(scene_.gravity.data(), dim);
@@ -276,7 +273,7 @@ void Simulation::Advance(double h, StepReport* report) {
   // The energy balance starts before the filters' BeginStep, which report
   // what they change (PrescribedWork): sim/energy_balance.h.
   const bool check_energy = variational && options_.energy_tolerance > 0.0;
-  const bool prescribed_motion = state_.prescribed_velocity.squaredNorm() > 0.0;
+  const bool prescribed_motion = state_.has_prescribed_motion();
   EnergyPoint energy_start;
   const bool measured_start =
       check_energy &&
@@ -307,15 +304,16 @@ void Simulation::Advance(double h, StepReport* report) {
   // finished its filters' work (e.g. a moving obstacle's staged time).
   if (potential_->has_step_filters()) {
     potential_->NotifyAccepted(state_.x.data());
-    if (!potential_->IsFeasible(state_.x.data())) {
+    if (!potential_->IsFeasible(state_.x.data()) && report->converged) {
+      // A step that failed already keeps its own reason (e.g. "infeasible
+      // start: prescribed nodes move into an obstacle").
       report->converged = false;
       report->status = "infeasible state after the step (penetration)";
     }
   }
+  state_.PrescribedVelocities(t_next, &state_.v);
   for (int i = 0; i < state_.num_nodes(); ++i) {
-    if (state_.is_free(i)) continue;
-    state_.v.segment(dim * i, dim) = state_.prescribed_velocity.segment(dim * i, dim);
-    state_.a.segment(dim * i, dim).setZero();
+    if (!state_.is_free(i)) state_.a.segment(dim * i, dim).setZero();
   }
   state_.time = t_next;
   // The energies at the end, once: the report's and the balance's.

@@ -11,6 +11,7 @@
 #include "contact/segment_segment.h"
 #include "contact/self_ccd.h"
 #include "contact/self_gap_terms.h"
+#include "core/scoped_timer.h"
 
 namespace ipstep {
 
@@ -56,20 +57,32 @@ void EdgeEdgePairs::ForEachCandidate(const double* a, const double* b, double gr
                                      const F& f) const {
   if (!active_) return;
   const auto& edges = context_.mesh->edges;
-  SelfContactMesh::BuildTree(edges, a, b, grow, &bvh_);
-  for (size_t e = 0; e < edges.size(); ++e) {
-    Eigen::Vector3d lower, upper;
-    SelfContactMesh::MotionBox(a, b, edges[e], 0.0, &lower, &upper);
-    bvh_.Query(lower, upper, &ids_);
-    std::sort(ids_.begin(), ids_.end());
-    for (int other : ids_) {
-      if (other <= static_cast<int>(e)) continue;
-      const auto& u = edges[e];
-      const auto& v = edges[other];
-      if (u[0] == v[0] || u[0] == v[1] || u[1] == v[0] || u[1] == v[1]) continue;
-      f(Pair{static_cast<int>(e), other});
+  const int n = geometry_.num_coordinates();
+  if (candidates_.Matches(a, b, n, grow)) {
+    for (const Pair& pair : candidates_.candidates) f(pair);
+    return;
+  }
+  std::vector<Pair>& candidates = candidates_.candidates;
+  candidates.clear();
+  {
+    ScopedTimer timer(&broad_phase_seconds_);
+    SelfContactMesh::BuildTree(edges, a, b, grow, &bvh_);
+    for (size_t e = 0; e < edges.size(); ++e) {
+      Eigen::Vector3d lower, upper;
+      SelfContactMesh::MotionBox(a, b, edges[e], 0.0, &lower, &upper);
+      bvh_.Query(lower, upper, &ids_);
+      std::sort(ids_.begin(), ids_.end());
+      for (int other : ids_) {
+        if (other <= static_cast<int>(e)) continue;
+        const auto& u = edges[e];
+        const auto& v = edges[other];
+        if (u[0] == v[0] || u[0] == v[1] || u[1] == v[0] || u[1] == v[1]) continue;
+        candidates.push_back(Pair{static_cast<int>(e), other});
+      }
     }
   }
+  candidates_.Store(a, b, n, grow);
+  for (const Pair& pair : candidates) f(pair);
 }
 
 bool EdgeEdgePairs::Extend(const CandidateRegion& region) {

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "contact/pair_set.h"
+#include "contact/pairs/candidate_cache.h"
 #include "contact/pairs/self_contact_mesh.h"
 #include "contact/self_gap_terms.h"
 #include "contact/sorted_pairs.h"
@@ -48,6 +49,7 @@ class EdgeEdgePairs : public PairSet {
   bool Missing(const double* x) const override;
 
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
+  double BroadPhaseSeconds() const override { return broad_phase_seconds_; }
   std::string FindPenetration(const double* x, double t) const override;
   void Near(const double* x, double t, double reach, double* min_distance,
             int* count) const override;
@@ -83,6 +85,8 @@ class EdgeEdgePairs : public PairSet {
   std::vector<SelfFrictionLag> friction_;
   mutable Bvh bvh_;
   mutable std::vector<int> ids_;
+  mutable CandidateCache<Pair> candidates_;  // ForEachCandidate's broad-phase output
+  mutable double broad_phase_seconds_ = 0.0;
 };
 
 }  // namespace ipstep

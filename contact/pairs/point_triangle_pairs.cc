@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 #include "contact/barrier.h"
 #include "contact/friction.h"
@@ -11,6 +12,7 @@
 #include "contact/self_ccd.h"
 #include "contact/self_gap_terms.h"
 #include "contact/triangle_intersection.h"
+#include "core/scoped_timer.h"
 
 namespace ipstep {
 
@@ -53,18 +55,30 @@ void PointTrianglePairs::ForEachCandidate(const double* a, const double* b, doub
                                           const F& f) const {
   if (!active_) return;
   const CollisionMesh& mesh = *context_.mesh;
-  SelfContactMesh::BuildTree(mesh.faces, a, b, grow, &bvh_);
-  for (int node : mesh.nodes) {
-    Eigen::Vector3d lower, upper;
-    SelfContactMesh::MotionBox(a, b, Single(node), 0.0, &lower, &upper);
-    bvh_.Query(lower, upper, &ids_);
-    std::sort(ids_.begin(), ids_.end());
-    for (int face : ids_) {
-      const auto& v = mesh.faces[face];
-      if (v[0] == node || v[1] == node || v[2] == node) continue;
-      f(Pair{node, face});
+  const int n = geometry_.num_coordinates();
+  if (candidates_.Matches(a, b, n, grow)) {
+    for (const Pair& pair : candidates_.candidates) f(pair);
+    return;
+  }
+  std::vector<Pair>& candidates = candidates_.candidates;
+  candidates.clear();
+  {
+    ScopedTimer timer(&broad_phase_seconds_);
+    SelfContactMesh::BuildTree(mesh.faces, a, b, grow, &bvh_);
+    for (int node : mesh.nodes) {
+      Eigen::Vector3d lower, upper;
+      SelfContactMesh::MotionBox(a, b, Single(node), 0.0, &lower, &upper);
+      bvh_.Query(lower, upper, &ids_);
+      std::sort(ids_.begin(), ids_.end());
+      for (int face : ids_) {
+        const auto& v = mesh.faces[face];
+        if (v[0] == node || v[1] == node || v[2] == node) continue;
+        candidates.push_back(Pair{node, face});
+      }
     }
   }
+  candidates_.Store(a, b, n, grow);
+  for (const Pair& pair : candidates) f(pair);
 }
 
 bool PointTrianglePairs::Extend(const CandidateRegion& region) {
@@ -135,25 +149,30 @@ std::string PointTrianglePairs::FindPenetration(const double* x, double t) const
   if (!out.str().empty()) return out.str();
   // Faces without a common node that intersect (exact predicates).
   const CollisionMesh& mesh = *context_.mesh;
-  SelfContactMesh::BuildTree(mesh.faces, x, x, 0.0, &bvh_);
-  std::vector<int> ids;
-  for (size_t i = 0; i < mesh.faces.size(); ++i) {
-    const auto& fi = mesh.faces[i];
-    Eigen::Vector3d lower, upper;
-    SelfContactMesh::MotionBox(x, x, fi, 0.0, &lower, &upper);
-    bvh_.Query(lower, upper, &ids);
-    for (int j : ids) {
-      if (j <= static_cast<int>(i)) continue;
-      const auto& fj = mesh.faces[j];
-      bool shared = false;
-      for (int p : fi) shared |= p == fj[0] || p == fj[1] || p == fj[2];
-      if (shared) continue;
-      auto v = [&](int node) { return SelfContactMesh::Vertex(x, node); };
-      if (TrianglesIntersect(v(fi[0]), v(fi[1]), v(fi[2]), v(fj[0]), v(fj[1]), v(fj[2]))) {
-        out << "faces (" << fi[0] << ", " << fi[1] << ", " << fi[2] << ") and (" << fj[0] << ", "
-            << fj[1] << ", " << fj[2] << ") intersect";
-        return out.str();
+  std::vector<std::pair<int, int>> face_pairs;
+  {
+    ScopedTimer timer(&broad_phase_seconds_);
+    SelfContactMesh::BuildTree(mesh.faces, x, x, 0.0, &bvh_);
+    for (size_t i = 0; i < mesh.faces.size(); ++i) {
+      Eigen::Vector3d lower, upper;
+      SelfContactMesh::MotionBox(x, x, mesh.faces[i], 0.0, &lower, &upper);
+      bvh_.Query(lower, upper, &ids_);
+      for (int j : ids_) {
+        if (j > static_cast<int>(i)) face_pairs.emplace_back(static_cast<int>(i), j);
       }
+    }
+  }
+  for (const auto& [i, j] : face_pairs) {
+    const auto& fi = mesh.faces[i];
+    const auto& fj = mesh.faces[j];
+    bool shared = false;
+    for (int p : fi) shared |= p == fj[0] || p == fj[1] || p == fj[2];
+    if (shared) continue;
+    auto v = [&](int node) { return SelfContactMesh::Vertex(x, node); };
+    if (TrianglesIntersect(v(fi[0]), v(fi[1]), v(fi[2]), v(fj[0]), v(fj[1]), v(fj[2]))) {
+      out << "faces (" << fi[0] << ", " << fi[1] << ", " << fi[2] << ") and (" << fj[0] << ", "
+          << fj[1] << ", " << fj[2] << ") intersect";
+      return out.str();
     }
   }
   return "";

@@ -31,6 +31,9 @@ class SelfContactMesh {
   }
   const CollisionMesh& mesh() const { return *mesh_; }
   int slot(int node) const { return slot_[node]; }
+  // Coordinates of a configuration up to the mesh's largest node (what the
+  // mesh's primitives read of it).
+  int num_coordinates() const { return 3 * static_cast<int>(slot_.size()); }
 
   static Eigen::Vector3d Vertex(const double* x, int node) {
     return Eigen::Vector3d(x[3 * node], x[3 * node + 1], x[3 * node + 2]);

@@ -20,17 +20,19 @@ SURFACE = True  # scenes listing nodes and springs declare their surface
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def cloth(n, size, place, first=0, rest=False, crease=None):
-    """n x n nodes, spacing size / (n - 1); place(u, v) -> [x, y, z] with u, v
-    in [0, size]. Returns positions, springs (node ids from `first`); with
+def cloth(n, size, place, first=0, rest=False, crease=None, rows=None):
+    """n x rows nodes (rows defaults to n), spacing size / (n - 1); place(u, v)
+    -> [x, y, z] with u in [0, size], v in [0, (rows - 1) spacing]. Returns
+    positions, springs (node ids from `first`); with
     `rest`, every spring's rest length is that of the flat grid (else the
     loader takes the initial length). `crease`: a column index; bending
     springs across it are left out (BuildCollisionMesh decides from the
     initial positions which springs span a node, and a bending spring across
     a fold does not, so it would become a contact edge)."""
+    rows = n if rows is None else rows
     a = size / (n - 1)
     positions = []
-    for j in range(n):
+    for j in range(rows):
         for i in range(n):
             positions.append([round(c, 12) for c in place(i * a, j * a)])
     springs = []
@@ -44,29 +46,31 @@ def cloth(n, size, place, first=0, rest=False, crease=None):
             entry["rest_length"] = round(length, 12)
         springs.append(entry)
 
-    for j in range(n):
+    for j in range(rows):
         for i in range(n):
             if i + 1 < n:
                 spring(idx(i, j), idx(i + 1, j), "squared_strain", 2000.0, a)
-            if j + 1 < n:
+            if j + 1 < rows:
                 spring(idx(i, j), idx(i, j + 1), "squared_strain", 2000.0, a)
-            if i + 1 < n and j + 1 < n:
+            if i + 1 < n and j + 1 < rows:
                 spring(idx(i, j), idx(i + 1, j + 1), "squared_strain", 2000.0, a * math.sqrt(2))
             if i + 2 < n and not (crease is not None and i < crease <= i + 2):
                 spring(idx(i, j), idx(i + 2, j), "hookean", 50.0, 2 * a)
-            if j + 2 < n:
+            if j + 2 < rows:
                 spring(idx(i, j), idx(i, j + 2), "hookean", 50.0, 2 * a)
     return positions, springs
 
 
-def triangles(n, first=0):
-    """The two triangles per quad of an n x n cloth (the diagonal (i, j) -
+def triangles(n, first=0, rows=None):
+    """The two triangles per quad of an n x rows cloth (the diagonal (i, j) -
     (i + 1, j + 1) of its shear springs)."""
+    rows = n if rows is None else rows
+
     def idx(i, j):
         return first + j * n + i
 
     out = []
-    for j in range(n - 1):
+    for j in range(rows - 1):
         for i in range(n - 1):
             out.append([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)])
             out.append([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)])
@@ -168,6 +172,30 @@ def main():
           "problems/self_contact/generate.py.",
           pos, spr, [0.2 / len(pos)] * len(pos), [ground(-1.0)], 400, moving=moving,
           velocities=velocities, surface=triangles(n))
+
+    # 4. A strip twisted by its two ends: the end columns turn in opposite
+    # directions about the strip's axis (x) while they approach each other,
+    # two relative turns in 2 s; the twisted strip coils onto itself.
+    cols, rows = 33, 9
+    spacing = 1.0 / (cols - 1)
+    width = (rows - 1) * spacing
+    pos, spr = cloth(cols, 1.0, lambda u, v: [u - 0.5, 0.0, v - width / 2], rows=rows)
+    rate = math.pi  # rad/s each end
+    inward = 0.1  # m/s each end
+    moving = []
+    for j in range(rows):
+        for i, sign in ((0, 1.0), (cols - 1, -1.0)):
+            moving.append({"node": j * cols + i, "velocity": [sign * inward, 0, 0],
+                           "angular_velocity": [sign * rate, 0, 0],
+                           "center": [-sign * 0.5, 0, 0]})
+    scene("cloth_twist",
+          "3D self-contact: a 1 m x 0.25 m strip (33 x 9 nodes, one triangulation, 0.05 kg) "
+          "held at its two short edges, which turn in opposite directions about the strip's "
+          "axis at pi rad/s each (rotating moving nodes) while they approach each other at "
+          "0.1 m/s each: two relative turns in 2 s, the ends 0.6 m apart at the end; the "
+          "twisted strip coils and touches itself. problems/self_contact/generate.py.",
+          pos, spr, [0.2 * 0.25 / len(pos)] * len(pos), [], 400, h=0.005, moving=moving,
+          surface=triangles(cols, rows=rows))
 
 
 if __name__ == "__main__":

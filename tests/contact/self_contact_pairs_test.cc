@@ -191,6 +191,23 @@ TEST(PointTrianglePairs, ExtendFindsTheClosePairsAndTermsAreTheBarrier) {
   EXPECT_TRUE(far_pairs.ChangedSinceClear());
 }
 
+// The broad phase's last answer is reused only for the same query by value:
+// a buffer changed in place is a new query (contact/pairs/candidate_cache.h).
+TEST(PointTrianglePairs, RepeatedQueriesAnswerTheirOwnConfiguration) {
+  TwoSheets s(0.3, 0.2, 0.0, 0.1, 1e-4);
+  PointTrianglePairs pairs(s.context);
+  std::vector<double> end = s.Moved(-0.6);
+  const double t = pairs.TimeOfImpact(s.x.data(), end.data(), 0.0, 0.0);
+  EXPECT_LT(t, 1.0);
+  const double seconds = pairs.BroadPhaseSeconds();
+  EXPECT_GT(seconds, 0.0);
+  EXPECT_EQ(pairs.TimeOfImpact(s.x.data(), end.data(), 0.0, 0.0), t);
+  EXPECT_EQ(pairs.BroadPhaseSeconds(), seconds);  // the repeat needed no broad phase
+  end = s.Moved(0.5);                             // same buffer, moving away: no impact
+  EXPECT_EQ(pairs.TimeOfImpact(s.x.data(), end.data(), 0.0, 0.0), PairSet::kNoImpact);
+  EXPECT_GT(pairs.BroadPhaseSeconds(), seconds);
+}
+
 TEST(PointTrianglePairs, TimeOfImpactStopsAMotionThroughTheSheet) {
   TwoSheets s(0.3, 0.2, 0.0, 0.1, 1e-4);
   PointTrianglePairs pairs(s.context);

@@ -334,6 +334,37 @@ TEST(GridTest, SymbolicRowsAndColumns) {
   EXPECT_EQ(ParseScene(scene, kSource).pinned, (std::vector<int>{0, 3, 6, 9, 11}));
 }
 
+// A rotating moving entry (core/prescribed_motion.h): its motion, the nodes'
+// initial velocity v + ω × (x0 − c), and its errors.
+TEST(GridTest, RotatingMovingNodes) {
+  json scene = Grid(3, 3, {"structural"});
+  scene["moving"] = {{{"node", "top_right"},
+                      {"velocity", {0.5, 0}},
+                      {"angular_velocity", 2.0},
+                      {"center", {0, 0}},
+                      {"until", 1.5}}};
+  Scene parsed = ParseScene(scene, kSource);
+  ASSERT_EQ(parsed.moving.size(), 1u);
+  const MovingNode& m = parsed.moving[0];
+  EXPECT_EQ(m.angular_velocity, (std::vector<double>{2.0}));
+  EXPECT_EQ(m.center, (std::vector<double>{0, 0}));
+  EXPECT_EQ(m.until, 1.5);
+  const std::vector<double> x0 = PositionOf(parsed, m.node);
+  // ω ẑ × (x, y) = ω (−y, x).
+  EXPECT_EQ(VelocityOf(parsed, m.node), (std::vector<double>{0.5 - 2.0 * x0[1], 2.0 * x0[0]}));
+
+  scene["moving"] = {{{"node", 0}, {"angular_velocity", 1.0}}};
+  ExpectMessage(ErrorOf(scene), "moving[0].center", "required key is missing");
+  scene["moving"] = {{{"node", 0}, {"velocity", {1, 0}}, {"center", {0, 0}}}};
+  ExpectMessage(ErrorOf(scene), "moving[0].center", "has no effect");
+  scene["moving"] = {{{"node", 0}, {"until", 1.0}}};
+  ExpectMessage(ErrorOf(scene), "moving[0]", "needs \"velocity\", \"angular_velocity\"");
+  scene["moving"] = {{{"node", 0}, {"velocity", {1, 0}}, {"until", 0.0}}};
+  ExpectMessage(ErrorOf(scene), "moving[0].until", "must be in (0");
+  scene["moving"] = {{{"node", 0}, {"angular_velocity", {1, 0, 0}}, {"center", {0, 0}}}};
+  ExpectMessage(ErrorOf(scene), "moving[0].angular_velocity", "");
+}
+
 TEST(GridTest, MassFromDensityAndTotalMass) {
   json scene = Grid(3, 3, {});
   scene["effects"] = json::array();
