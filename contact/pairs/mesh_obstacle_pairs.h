@@ -147,7 +147,7 @@ class MeshObstaclePairs : public PairSet {
 
   PairSetContext c_;
   const CollisionMesh* surface_;
-  const std::vector<Obstacle>* obstacles_;
+  const ObstacleList* obstacles_;
   std::vector<bool> slot_free_;
   double d_hat_;
   double margin_;
