@@ -471,6 +471,13 @@ TEST(CollisionMesh, UndeclaredOrDegenerateSurfaceIsAnInputError) {
   EXPECT_DOUBLE_EQ(mesh.weights[0], 0.5);  // half the edge
   EXPECT_DOUBLE_EQ(mesh.weights[2], 1.0);  // a point
   EXPECT_DOUBLE_EQ(mesh.edge_weights[0], 0.25);
+  // The node -> slot table every pair kind reads: -1 off the surface.
+  scene.surface.edges = {{0, 2}};
+  scene.surface.points.clear();
+  const CollisionMesh ends = BuildCollisionMesh(scene);
+  ASSERT_EQ(ends.nodes, std::vector<int>({0, 2}));
+  EXPECT_EQ(ends.node_slots, std::vector<int>({0, -1, 1}));
+  EXPECT_EQ(NodeSlot(ends, 2), 1);
 }
 
 }  // namespace
