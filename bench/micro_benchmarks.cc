@@ -21,6 +21,7 @@
 
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
+#include "contact/obstacles/box_obstacle.h"
 #include "core/term_hessian.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
@@ -232,11 +233,7 @@ BENCHMARK(BM_NewtonIteration_Reference)->Apply(ClothArguments);
 // A triangle 1 mm above a box corner (d_hat 5 mm), closest point interior.
 void FaceModel(benchmark::State& bench, bool analytic) {
   static const double kappa = 1e5, time = 0.0;
-  Obstacle box;
-  box.type = ObstacleType::kBox;
-  box.dimension = 3;
-  box.lower = Eigen::Vector3d(-0.2, -0.3, -0.2);
-  box.upper = Eigen::Vector3d(0.2, 0.0, 0.2);
+  const BoxObstacle box(3, Eigen::Vector3d(-0.2, -0.3, -0.2), Eigen::Vector3d(0.2, 0.0, 0.2));
   const int corner = 7;  // upper in every axis
   auto gap = std::make_unique<FaceObstacleGap>(&box, corner, &time, 5e-3, 1e-9);
   Term term;

@@ -24,9 +24,13 @@ Eigen::Vector3d RestPosition(const Scene& scene, int node) {
 
 }  // namespace
 
-int NodeSlot(const CollisionMesh& mesh, int node) {
-  return static_cast<int>(std::lower_bound(mesh.nodes.begin(), mesh.nodes.end(), node) -
-                          mesh.nodes.begin());
+void IndexNodeSlots(CollisionMesh* mesh) {
+  int largest = -1;
+  for (int node : mesh->nodes) largest = std::max(largest, node);
+  mesh->node_slots.assign(largest + 1, -1);
+  for (size_t s = 0; s < mesh->nodes.size(); ++s) {
+    mesh->node_slots[mesh->nodes[s]] = static_cast<int>(s);
+  }
 }
 
 CollisionMesh BuildCollisionMesh(const Scene& scene) {
@@ -80,6 +84,7 @@ CollisionMesh BuildCollisionMesh(const Scene& scene) {
     mesh.edges.push_back({a, b});
     mesh.edge_weights.push_back(0.25 * (weight[a] + weight[b]));
   }
+  IndexNodeSlots(&mesh);
   return mesh;
 }
 

@@ -31,10 +31,19 @@ struct CollisionMesh {
   std::vector<double> edge_weights;       // per entry of `edges`
   std::vector<std::array<int, 3>> faces;  // 3D triangles, as declared
   std::vector<double> face_weights;       // per entry of `faces`
+  // Slot (index in `nodes`) of every node id up to the largest contact node,
+  // -1 for a node not in contact: one dense table for every pair kind (a
+  // lookup per primitive vertex in the 3D self-contact kinds' inner loops).
+  // Filled by IndexNodeSlots.
+  std::vector<int> node_slots;
 };
 
-// Index of contact node `node` in mesh.nodes (ascending; binary search).
-int NodeSlot(const CollisionMesh& mesh, int node);
+// Fills mesh->node_slots from mesh->nodes; call after changing `nodes`
+// (BuildCollisionMesh and the contact filter do).
+void IndexNodeSlots(CollisionMesh* mesh);
+
+// Index of contact node `node` in mesh.nodes (mesh.node_slots).
+inline int NodeSlot(const CollisionMesh& mesh, int node) { return mesh.node_slots[node]; }
 
 // Throws InputError (key "surface") when the scene has springs between listed
 // nodes but declares no surface, or a triangle or edge is degenerate at rest.

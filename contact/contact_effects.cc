@@ -13,6 +13,7 @@
 
 #include "contact/collision_mesh.h"
 #include "contact/contact_filter.h"
+#include "contact/obstacles/read_obstacle.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/json_node.h"
@@ -22,48 +23,6 @@ namespace ipstep {
 namespace {
 
 using nlohmann::json;
-
-Obstacle ReadObstacle(const JsonNode& p, int dimension) {
-  if (!p.Has("type")) p.Get("type");  // throws "required key is missing"
-  const std::string type = p.Get("type").String();
-  Obstacle o;
-  o.dimension = dimension;
-  o.name = p.path();
-  if (type == "plane") {
-    p.ExpectObject({"type", "point", "normal", "velocity"});
-    o.type = ObstacleType::kPlane;
-    o.point = p.Get("point").Vector3(dimension, limits::kMaxCoordinate, "m");
-    const Eigen::Vector3d normal =
-        p.Get("normal").Vector3(dimension, std::numeric_limits<double>::max(), "");
-    // stableNorm: |normal|^2 must not overflow (normal [1e300, 1e300]) or underflow.
-    const double length = normal.stableNorm();
-    if (!(length > 0.0) || !std::isfinite(length)) {
-      p.Get("normal").Fail("must not be the zero vector");
-    }
-    o.normal = normal / length;
-  } else if (type == "sphere" || type == "circle") {
-    p.ExpectObject({"type", "center", "radius", "velocity"});
-    o.type = ObstacleType::kSphere;
-    o.point = p.Get("center").Vector3(dimension, limits::kMaxCoordinate, "m");
-    o.radius = p.Get("radius").InRange(limits::kMinLength, limits::kMaxCoordinate, "m");
-  } else if (type == "box") {
-    p.ExpectObject({"type", "min", "max", "velocity"});
-    o.type = ObstacleType::kBox;
-    o.lower = p.Get("min").Vector3(dimension, limits::kMaxCoordinate, "m");
-    o.upper = p.Get("max").Vector3(dimension, limits::kMaxCoordinate, "m");
-    for (int k = 0; k < dimension; ++k) {
-      if (!(o.upper[k] > o.lower[k])) {
-        p.Get("max").Fail("must be greater than \"min\" in every component");
-      }
-    }
-  } else {
-    p.Get("type").Fail("unknown obstacle type \"" + ClipInput(type) +
-                       "\" (known: plane, sphere, circle, box)");
-  }
-  if (p.Has("velocity"))
-    o.velocity = p.Get("velocity").Vector3(dimension, limits::kMaxSpeed, "m/s");
-  return o;
-}
 
 double BoundingBoxDiagonal(const Scene& scene) {
   const int dim = scene.dimension;

@@ -43,6 +43,7 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
                                     options_.d_hat)),
       time_(&options_.obstacles, state->time),
       accepted_(state->x) {
+  IndexNodeSlots(&mesh_);  // a mesh not from BuildCollisionMesh too
   PairSetContext c;
   c.dimension = dim_;
   c.num_coordinates = static_cast<int>(state->x.size());

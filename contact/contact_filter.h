@@ -109,7 +109,7 @@ class ContactFilter : public StepFilter {
   double d_hat() const { return options_.d_hat; }
   double obstacle_time() const { return time_.tau(); }
   const CollisionMesh& mesh() const { return mesh_; }
-  const std::vector<Obstacle>& obstacles() const { return options_.obstacles; }
+  const ObstacleList& obstacles() const { return options_.obstacles; }
   const std::vector<std::unique_ptr<PairSet>>& pair_sets() const { return sets_; }
   int num_barrier_pairs() const;
   int num_friction_contacts() const { return num_friction_contacts_; }

@@ -11,7 +11,7 @@ struct ContactOptions {
   double d_hat = 1e-3;  // barrier activation distance [m]
   double kappa = 0.0;   // barrier stiffness: > 0 fixed; 0 adaptive (contact/adaptive_kappa.h)
   bool self_contact = false;
-  std::vector<Obstacle> obstacles;
+  ObstacleList obstacles;
 };
 
 struct FrictionOptions {

@@ -231,18 +231,7 @@ bool EdgeEdgeDistanceHessian(const Eigen::Vector3d& a0, const Eigen::Vector3d& a
 
 bool ObstacleDistanceHessian(const Obstacle& obstacle, const Eigen::Vector3d& x, double t,
                              Eigen::Matrix3d* hessian) {
-  const Eigen::Vector3d y = x - obstacle.velocity * t;
-  switch (obstacle.type) {
-    case ObstacleType::kPlane:
-      hessian->setZero();
-      return true;
-    case ObstacleType::kSphere:
-      return PointPointDistanceHessian(y, obstacle.point, hessian);
-    case ObstacleType::kBox:
-      return PointBoxDistanceHessian(y, obstacle.lower, obstacle.upper, obstacle.dimension,
-                                     hessian);
-  }
-  return false;
+  return obstacle.DistanceHessian(x, t, hessian);
 }
 
 bool EdgeDistanceHessian(const Obstacle& obstacle, int feature, const Eigen::Vector3d& a,

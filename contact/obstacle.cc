@@ -1,149 +1,22 @@
+// The obstacle interface's shared part (contact/obstacle.h): an edge against
+// the obstacle's edge features (distance and continuous collision detection),
+// the same for every shape. Faces and box edges: obstacle_mesh_features.cc.
 #include "contact/obstacle.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "contact/point_triangle.h"
 #include "contact/segment_parameter.h"
-#include "contact/segment_segment.h"
 
 namespace ipstep {
 
-const char* ObstacleTypeName(ObstacleType type) {
-  switch (type) {
-    case ObstacleType::kPlane:
-      return "plane";
-    case ObstacleType::kSphere:
-      return "sphere";
-    case ObstacleType::kBox:
-      return "box";
-  }
-  return "unknown";
-}
-
-double Obstacle::Distance(const Eigen::Vector3d& x, double t, Eigen::Vector3d* gradient) const {
-  const Eigen::Vector3d y = x - velocity * t;  // in the obstacle's frame at time 0
-  switch (type) {
-    case ObstacleType::kPlane:
-      if (gradient) *gradient = normal;
-      return normal.dot(y - point);
-    case ObstacleType::kSphere: {
-      const Eigen::Vector3d r = y - point;
-      const double norm = r.norm();
-      if (gradient) {
-        *gradient = Eigen::Vector3d::Zero();
-        if (norm > 0.0) {
-          *gradient = r / norm;
-        } else {
-          (*gradient)[0] = 1.0;  // any direction at the centre
-        }
-      }
-      return norm - radius;
-    }
-    case ObstacleType::kBox: {
-      Eigen::Vector3d outside = Eigen::Vector3d::Zero();
-      bool inside = true;
-      for (int k = 0; k < dimension; ++k) {
-        if (y[k] < lower[k]) {
-          outside[k] = y[k] - lower[k];
-          inside = false;
-        } else if (y[k] > upper[k]) {
-          outside[k] = y[k] - upper[k];
-          inside = false;
-        }
-      }
-      if (!inside) {
-        const double norm = outside.norm();
-        if (gradient) *gradient = outside / norm;
-        return norm;
-      }
-      // Inside: minus the distance to the nearest face.
-      double best = std::numeric_limits<double>::infinity();
-      Eigen::Vector3d direction = Eigen::Vector3d::Zero();
-      for (int k = 0; k < dimension; ++k) {
-        if (y[k] - lower[k] < best) {
-          best = y[k] - lower[k];
-          direction = -Eigen::Vector3d::Unit(k);
-        }
-        if (upper[k] - y[k] < best) {
-          best = upper[k] - y[k];
-          direction = Eigen::Vector3d::Unit(k);
-        }
-      }
-      if (gradient) *gradient = direction;
-      return -best;
-    }
-  }
-  return 0.0;
-}
-
-namespace {
-
-// Entry fraction of the segment y0 -> y1 into the box [lo, hi] (slab method).
-double SegmentBoxEntry(const Eigen::Vector3d& y0, const Eigen::Vector3d& y1,
-                       const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int dimension) {
-  double enter = 0.0, leave = 1.0;
-  bool start_inside = true;
-  for (int k = 0; k < dimension; ++k) {
-    if (y0[k] < lo[k] || y0[k] > hi[k]) start_inside = false;
-  }
-  if (start_inside) return 0.0;
-  for (int k = 0; k < dimension; ++k) {
-    const double delta = y1[k] - y0[k];
-    if (delta == 0.0) {
-      if (y0[k] < lo[k] || y0[k] > hi[k]) return Obstacle::kNoImpact;
-      continue;
-    }
-    double s0 = (lo[k] - y0[k]) / delta, s1 = (hi[k] - y0[k]) / delta;
-    if (s0 > s1) std::swap(s0, s1);
-    enter = std::max(enter, s0);
-    leave = std::min(leave, s1);
-    if (enter > leave) return Obstacle::kNoImpact;
-  }
-  return enter;
-}
-
-}  // namespace
-
-double Obstacle::TimeOfImpact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_a,
-                              double t_b, double margin) const {
-  const Eigen::Vector3d y0 = a - velocity * t_a;
-  const Eigen::Vector3d y1 = b - velocity * t_b;
-  switch (type) {
-    case ObstacleType::kPlane: {
-      const double f0 = normal.dot(y0 - point) - margin;
-      const double f1 = normal.dot(y1 - point) - margin;
-      if (f0 <= 0.0) return 0.0;
-      if (f1 > 0.0) return kNoImpact;
-      return std::clamp(f0 / (f0 - f1), 0.0, 1.0);
-    }
-    case ObstacleType::kSphere: {
-      // |y0 - c + s (y1 - y0)|^2 = R^2, R = radius + margin.
-      const double reach = radius + margin;
-      const Eigen::Vector3d q = y0 - point, e = y1 - y0;
-      const double c = q.squaredNorm() - reach * reach;
-      if (c <= 0.0) return 0.0;
-      const double a2 = e.squaredNorm();
-      const double b2 = q.dot(e);
-      if (a2 == 0.0 || b2 >= 0.0) return kNoImpact;  // not approaching
-      const double discriminant = b2 * b2 - a2 * c;
-      if (discriminant < 0.0) return kNoImpact;
-      // Smaller root, written to avoid cancellation: s = c / (-b2 + sqrt(disc)).
-      const double s = c / (-b2 + std::sqrt(discriminant));
-      return s <= 1.0 ? std::max(s, 0.0) : kNoImpact;
-    }
-    case ObstacleType::kBox: {
-      const Eigen::Vector3d grow = Eigen::Vector3d::Constant(margin);
-      return SegmentBoxEntry(y0, y1, lower - grow, upper + grow, dimension);
-    }
-  }
-  return kNoImpact;
-}
+Obstacle::Obstacle(int dimension, const Eigen::Vector3d& velocity, std::string name)
+    : dimension_(dimension), velocity_(velocity), name_(std::move(name)) {}
 
 double PointSegmentDistance(const Eigen::Vector3d& c, const Eigen::Vector3d& a,
                             const Eigen::Vector3d& b, double* alpha) {
@@ -152,29 +25,9 @@ double PointSegmentDistance(const Eigen::Vector3d& c, const Eigen::Vector3d& a,
   return (a + s * (b - a) - c).norm();
 }
 
-int Obstacle::NumEdgeFeatures() const {
-  switch (type) {
-    case ObstacleType::kSphere:
-      return 1;
-    case ObstacleType::kBox:
-      return dimension == 2 ? 4 : 0;
-    case ObstacleType::kPlane:
-      return 0;
-  }
-  return 0;
-}
-
-Eigen::Vector3d Obstacle::EdgeFeature(int feature, double t) const {
-  Eigen::Vector3d c = point;
-  if (type == ObstacleType::kBox) {
-    c = Eigen::Vector3d((feature & 1 ? upper : lower)[0], (feature & 2 ? upper : lower)[1], 0.0);
-  }
-  return c + velocity * t;
-}
-
 double Obstacle::EdgeDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               double t, Eigen::Vector3d* grad_a, Eigen::Vector3d* grad_b) const {
-  const double r = type == ObstacleType::kSphere ? radius : 0.0;
+  const double r = FeatureRadius();
   const Eigen::Vector3d c = EdgeFeature(feature, t);
   double alpha = 0.0;
   const double distance = PointSegmentDistance(c, a, b, &alpha);
@@ -190,7 +43,7 @@ double Obstacle::EdgeDistance(int feature, const Eigen::Vector3d& a, const Eigen
 double Obstacle::EdgePointDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                    double alpha, double t, Eigen::Vector3d* grad_a,
                                    Eigen::Vector3d* grad_b) const {
-  const double r = type == ObstacleType::kSphere ? radius : 0.0;
+  const double r = FeatureRadius();
   const Eigen::Vector3d y = a + alpha * (b - a) - EdgeFeature(feature, t);
   const double distance = y.norm();
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
@@ -278,9 +131,9 @@ double Obstacle::EdgeTimeOfImpact(int feature, const Eigen::Vector3d& a0, const 
   // In the obstacle's frame: the feature c is fixed, the end points move
   // linearly: q(s) = c - a(s) = q0 + s q1, e(s) = b(s) - a(s) = e0 + s e1.
   const Eigen::Vector3d c = EdgeFeature(feature, 0.0);
-  const double r = type == ObstacleType::kSphere ? radius : 0.0;
-  const Eigen::Vector3d ya = a0 - velocity * t0, da = (a1 - velocity * t1) - ya;
-  const Eigen::Vector3d yb = b0 - velocity * t0, db = (b1 - velocity * t1) - yb;
+  const double r = FeatureRadius();
+  const Eigen::Vector3d ya = a0 - Shift(t0), da = (a1 - Shift(t1)) - ya;
+  const Eigen::Vector3d yb = b0 - Shift(t0), db = (b1 - Shift(t1)) - yb;
   auto gap = [&](double s) { return PointSegmentDistance(c, ya + s * da, yb + s * db) - r; };
   const double d0 = gap(0.0);
   if (!(d0 > margin)) return 0.0;

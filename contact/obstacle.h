@@ -1,47 +1,66 @@
-// Rigid obstacles for contact: half-spaces (planes with any normal), circles /
-// spheres and axis-aligned boxes, in 2D or 3D, static or translating with a
-// constant velocity: the obstacle at time t is its initial shape shifted by
-// velocity * t.
+// Rigid obstacles for contact: the interface every shape implements
+// (contact/obstacles/: plane, sphere / circle, axis-aligned box), in 2D or 3D,
+// static or translating with a constant velocity: the obstacle at time t is
+// its shape at rest shifted by velocity * t.
 //
-// Distances are signed (negative inside the obstacle). Continuous collision
-// detection works in the obstacle's frame: a point moving linearly while the
-// obstacle translates linearly moves linearly relative to it.
+// The translation is handled here, once: every query at time t maps its
+// points into the obstacle's frame at rest (y = x - velocity t) or its rest
+// features out of it (+ velocity t), and the shapes only answer at rest
+// (the protected Rest* methods). Continuous collision detection works in that
+// frame: a point moving linearly while the obstacle translates linearly moves
+// linearly relative to it.
+//
+// Distances are signed (negative inside the obstacle).
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
 namespace ipstep {
 
-enum class ObstacleType { kPlane, kSphere, kBox };
+class ObstacleVisitor;
 
-const char* ObstacleTypeName(ObstacleType type);
+class Obstacle {
+ public:
+  // Unused trailing components (z in 2D) of every vector are zero.
+  Obstacle(int dimension, const Eigen::Vector3d& velocity, std::string name);
+  virtual ~Obstacle() = default;
 
-struct Obstacle {
-  ObstacleType type = ObstacleType::kPlane;
-  int dimension = 2;
-  // Unused trailing components (z in 2D) are zero.
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // plane: a point on it; sphere: centre
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // plane: unit normal towards the free side
-  double radius = 0.0;                               // sphere
-  Eigen::Vector3d lower = Eigen::Vector3d::Zero();   // box: min corner
-  Eigen::Vector3d upper = Eigen::Vector3d::Zero();   // box: max corner
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-  std::string name;  // e.g. "contact.obstacles[0]", for messages
+  // "plane", "sphere", "box" (for messages).
+  virtual const char* type_name() const = 0;
+  // Calls the visitor's overload for the concrete shape (io/ draws them so).
+  virtual void Accept(ObstacleVisitor& visitor) const = 0;
 
-  bool is_moving() const { return velocity.squaredNorm() > 0.0; }
+  int dimension() const { return dimension_; }
+  const Eigen::Vector3d& velocity() const { return velocity_; }
+  const std::string& name() const { return name_; }  // e.g. "contact.obstacles[0]"
+  bool is_moving() const { return velocity_.squaredNorm() > 0.0; }
+  // The obstacle's displacement at time t: velocity * t.
+  Eigen::Vector3d Shift(double t) const { return velocity_ * t; }
 
   // Signed distance of point x (dimension components used) at time t; the unit
   // gradient with respect to x when `gradient` is not null.
-  double Distance(const Eigen::Vector3d& x, double t, Eigen::Vector3d* gradient = nullptr) const;
+  double Distance(const Eigen::Vector3d& x, double t, Eigen::Vector3d* gradient = nullptr) const {
+    return RestDistance(x - Shift(t), gradient);
+  }
+  // Its Hessian with respect to x (false where it is not defined).
+  bool DistanceHessian(const Eigen::Vector3d& x, double t, Eigen::Matrix3d* hessian) const {
+    return RestDistanceHessian(x - Shift(t), hessian);
+  }
+  // True when Distance is affine in x (a plane): its Gauss-Newton model is exact.
+  virtual bool distance_is_affine() const { return false; }
 
   // First fraction s in [0, 1] at which the point moving linearly from a (at
   // obstacle time t_a) to b (at obstacle time t_b) comes within `margin` of the
   // obstacle, i.e. enters the obstacle grown by margin (boxes are grown as boxes,
   // slightly conservative at corners). 0 if it starts there; kNoImpact if never.
   double TimeOfImpact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_a, double t_b,
-                      double margin) const;
+                      double margin) const {
+    return RestTimeOfImpact(a - Shift(t_a), b - Shift(t_b), margin);
+  }
 
   static constexpr double kNoImpact = 2.0;
 
@@ -54,9 +73,11 @@ struct Obstacle {
   // (a segment meets a half-space only where an end point does) and 3D boxes
   // (their corners are ends of box edges: segments meet 3D boxes through the
   // box edges, NumBoxEdges below) have none.
-  int NumEdgeFeatures() const;
+  virtual int NumEdgeFeatures() const { return 0; }
   // World position of a feature at time t.
-  Eigen::Vector3d EdgeFeature(int feature, double t) const;
+  Eigen::Vector3d EdgeFeature(int feature, double t) const {
+    return RestFeature(feature) + Shift(t);
+  }
   // d = |c - closest point of [a, b]| - R for feature c at time t (negative:
   // the segment is inside the sphere); gradients with respect to a and b when
   // not null: (1 - alpha) n and alpha n, n the unit direction from c to the
@@ -99,11 +120,13 @@ struct Obstacle {
   // with the obstacle's "face features": 3D sphere: its centre (radius R);
   // 3D box: its 8 corners (radius 0; corner k has the upper bound in axis j
   // where bit j of k is set); planes, and everything in 2D, have none.
-  int NumFaceFeatures() const;
+  virtual int NumFaceFeatures() const { return 0; }
   // World position of a face feature at time t.
-  Eigen::Vector3d FaceFeature(int feature, double t) const;
-  // R of the sphere's features, 0 for box corners.
-  double FeatureRadius() const { return type == ObstacleType::kSphere ? radius : 0.0; }
+  Eigen::Vector3d FaceFeature(int feature, double t) const {
+    return RestFeature(feature) + Shift(t);
+  }
+  // R of the features (edge and face): the sphere's radius, 0 for box corners.
+  virtual double FeatureRadius() const { return 0.0; }
   // d = |c - closest point of the triangle| - R (contact/point_triangle.h);
   // gradients with respect to the vertices (w_i n) into grad[0..2] and the
   // closest point's barycentric weights when not null.
@@ -131,8 +154,9 @@ struct Obstacle {
 
   // 3D box edges (12; edge k is parallel to axis k / 4, at the lower or upper
   // bound of the next axis (bit 0 of k % 4) and of the one after (bit 1)),
-  // against contact edges (segment-segment, contact/segment_segment.h).
-  int NumBoxEdges() const;
+  // against contact edges (segment-segment, contact/segment_segment.h). Other
+  // shapes have none.
+  virtual int NumBoxEdges() const { return 0; }
   // End points (lower and upper in the edge's axis) at time t.
   void BoxEdge(int edge, double t, Eigen::Vector3d* p, Eigen::Vector3d* q) const;
   // Distance between the segment [a, b] and box edge `edge` at time t;
@@ -149,7 +173,35 @@ struct Obstacle {
                              double t1, double margin) const;
 
   static constexpr int kMaxAdvancements = 200;
+
+ protected:
+  // Shapes copy as themselves; an Obstacle& does not copy (no slicing).
+  Obstacle(const Obstacle&) = default;
+  Obstacle& operator=(const Obstacle&) = default;
+
+  // The shape at rest (time 0), y in its frame.
+  virtual double RestDistance(const Eigen::Vector3d& y, Eigen::Vector3d* gradient) const = 0;
+  virtual bool RestDistanceHessian(const Eigen::Vector3d& y, Eigen::Matrix3d* hessian) const = 0;
+  virtual double RestTimeOfImpact(const Eigen::Vector3d& y0, const Eigen::Vector3d& y1,
+                                  double margin) const = 0;
+  // Edge / face feature k at rest (only called for k below their counts).
+  virtual Eigen::Vector3d RestFeature(int /*feature*/) const { return Eigen::Vector3d::Zero(); }
+  // Box edge k at rest (only called for k < NumBoxEdges()).
+  virtual void RestBoxEdge(int /*edge*/, Eigen::Vector3d* p, Eigen::Vector3d* q) const {
+    p->setZero();
+    q->setZero();
+  }
+
+ private:
+  int dimension_;
+  Eigen::Vector3d velocity_;
+  std::string name_;
 };
+
+// Obstacles are immutable once built and shared (the contact options, the
+// contact filter and the frame writer hold the same ones).
+using ObstaclePtr = std::shared_ptr<const Obstacle>;
+using ObstacleList = std::vector<ObstaclePtr>;
 
 // Distance from point c to the segment [a, b]; alpha of the closest point
 // a + alpha (b - a) when not null.

@@ -1,6 +1,7 @@
 // Obstacle's 3D features (contact/obstacle.h): face features (a sphere's
 // centre, a 3D box's corners) against triangles, and a 3D box's edges against
-// segments, with their conservative-advancement time of impact.
+// segments, with their conservative-advancement time of impact; the same for
+// every shape (the shapes give the features at rest).
 #include <algorithm>
 #include <cmath>
 
@@ -38,27 +39,6 @@ double ConservativeAdvancement(const Gap& gap, double bound, double margin) {
 
 }  // namespace
 
-int Obstacle::NumFaceFeatures() const {
-  if (dimension != 3) return 0;
-  switch (type) {
-    case ObstacleType::kSphere:
-      return 1;
-    case ObstacleType::kBox:
-      return 8;
-    case ObstacleType::kPlane:
-      return 0;
-  }
-  return 0;
-}
-
-Eigen::Vector3d Obstacle::FaceFeature(int feature, double t) const {
-  Eigen::Vector3d c = point;
-  if (type == ObstacleType::kBox) {
-    for (int k = 0; k < 3; ++k) c[k] = (feature >> k & 1 ? upper : lower)[k];
-  }
-  return c + velocity * t;
-}
-
 double Obstacle::FaceDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector3d& c, double t, Eigen::Vector3d* grad,
                               Eigen::Vector3d* weights) const {
@@ -93,8 +73,8 @@ double Obstacle::FaceTimeOfImpact(int feature, const Eigen::Vector3d* v0, const 
   Eigen::Vector3d y[3], dy[3];
   double bound = 0.0;
   for (int k = 0; k < 3; ++k) {
-    y[k] = v0[k] - velocity * t0;
-    dy[k] = (v1[k] - velocity * t1) - y[k];
+    y[k] = v0[k] - Shift(t0);
+    dy[k] = (v1[k] - Shift(t1)) - y[k];
     bound = std::max(bound, dy[k].norm());
   }
   auto gap = [&](double s) {
@@ -104,18 +84,10 @@ double Obstacle::FaceTimeOfImpact(int feature, const Eigen::Vector3d* v0, const 
   return ConservativeAdvancement(gap, bound, margin);
 }
 
-int Obstacle::NumBoxEdges() const { return type == ObstacleType::kBox && dimension == 3 ? 12 : 0; }
-
 void Obstacle::BoxEdge(int edge, double t, Eigen::Vector3d* p, Eigen::Vector3d* q) const {
-  const int axis = edge / 4, bits = edge % 4;
-  const int next = (axis + 1) % 3, after = (axis + 2) % 3;
-  Eigen::Vector3d corner;
-  corner[next] = (bits & 1 ? upper : lower)[next];
-  corner[after] = (bits & 2 ? upper : lower)[after];
-  corner[axis] = lower[axis];
-  *p = corner + velocity * t;
-  corner[axis] = upper[axis];
-  *q = corner + velocity * t;
+  RestBoxEdge(edge, p, q);
+  *p += Shift(t);
+  *q += Shift(t);
 }
 
 double Obstacle::BoxEdgeDistance(int edge, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -135,8 +107,8 @@ double Obstacle::BoxEdgeTimeOfImpact(int edge, const Eigen::Vector3d& a0, const 
                                      double t0, double t1, double margin) const {
   Eigen::Vector3d p, q;
   BoxEdge(edge, 0.0, &p, &q);
-  const Eigen::Vector3d ya = a0 - velocity * t0, da = (a1 - velocity * t1) - ya;
-  const Eigen::Vector3d yb = b0 - velocity * t0, db = (b1 - velocity * t1) - yb;
+  const Eigen::Vector3d ya = a0 - Shift(t0), da = (a1 - Shift(t1)) - ya;
+  const Eigen::Vector3d yb = b0 - Shift(t0), db = (b1 - Shift(t1)) - yb;
   auto gap = [&](double s) {
     return SegmentSegmentDistance(ya + s * da, yb + s * db, p, q).distance;
   };

@@ -4,9 +4,9 @@
 
 namespace ipstep {
 
-ObstacleTime::ObstacleTime(const std::vector<Obstacle>* obstacles, double t0)
+ObstacleTime::ObstacleTime(const ObstacleList* obstacles, double t0)
     : obstacles_(obstacles), t_n_(t0), t_next_(t0), tau_(t0) {
-  for (const Obstacle& o : *obstacles_) has_moving_ |= o.is_moving();
+  for (const ObstaclePtr& o : *obstacles_) has_moving_ |= o->is_moving();
 }
 
 void ObstacleTime::BeginStep(double t_n, double h) {
@@ -30,8 +30,9 @@ void ObstacleTime::Advance(const std::function<double(double, double)>& first_im
 
 std::vector<double> ObstacleTime::Travel() const {
   std::vector<double> travel;
-  for (const Obstacle& o : *obstacles_) {
-    travel.push_back(o.velocity.norm() * std::max(0.0, t_next_ - tau_));
+  for (const ObstaclePtr& o_ptr : *obstacles_) {
+    const Obstacle& o = *o_ptr;
+    travel.push_back(o.velocity().norm() * std::max(0.0, t_next_ - tau_));
   }
   return travel;
 }

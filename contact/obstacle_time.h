@@ -16,7 +16,7 @@ namespace ipstep {
 class ObstacleTime {
  public:
   // `obstacles` must outlive this.
-  ObstacleTime(const std::vector<Obstacle>* obstacles, double t0);
+  ObstacleTime(const ObstacleList* obstacles, double t0);
 
   // A step from t_n of length h: tau = t_n.
   void BeginStep(double t_n, double h);
@@ -47,7 +47,7 @@ class ObstacleTime {
   static constexpr double kAdvanceFraction = 0.8;
 
  private:
-  const std::vector<Obstacle>* obstacles_;
+  const ObstacleList* obstacles_;
   bool has_moving_ = false;
   double t_n_;
   double t_next_;

@@ -40,7 +40,7 @@ struct PairSetContext {
   int dimension = 3;
   int num_coordinates = 0;  // size of a configuration x (dimension x nodes)
   const CollisionMesh* mesh = nullptr;
-  const std::vector<Obstacle>* obstacles = nullptr;
+  const ObstacleList* obstacles = nullptr;
   // Per entry of mesh->nodes: whether that node is free (pairs whose nodes
   // are all fixed get no terms).
   const std::vector<bool>* node_free = nullptr;

@@ -62,9 +62,9 @@ FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
   for (const auto& filter : sim.potential().step_filters()) {
     if (const auto* contact = dynamic_cast<const ContactFilter*>(filter.get())) {
       has_contact_ = true;
-      for (const Obstacle& o : contact->obstacles()) {
+      for (const ObstaclePtr& o : contact->obstacles()) {
         obstacles_.push_back(o);
-        obstacles_move_ = obstacles_move_ || o.is_moving();
+        obstacles_move_ = obstacles_move_ || o->is_moving();
       }
     }
   }

@@ -39,7 +39,7 @@ class FrameWriter {
   std::unique_ptr<PvdSeries> series_;  // DIR/run.pvd
   std::vector<std::array<int, 3>> triangles_;
   std::vector<int> particles_;  // nodes without springs
-  std::vector<Obstacle> obstacles_;
+  ObstacleList obstacles_;
   bool has_contact_ = false;  // the scene has contact: point data "contact_force"
   bool obstacles_move_ = false;
   bool static_obstacles_written_ = false;

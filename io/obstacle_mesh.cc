@@ -4,6 +4,11 @@
 
 #include <Eigen/Geometry>
 
+#include "contact/obstacles/box_obstacle.h"
+#include "contact/obstacles/obstacle_visitor.h"
+#include "contact/obstacles/plane_obstacle.h"
+#include "contact/obstacles/sphere_obstacle.h"
+
 namespace ipstep {
 namespace {
 
@@ -17,11 +22,11 @@ int AddPoint(VtkMesh* mesh, const Eigen::Vector3d& p) {
   return static_cast<int>(mesh->points.size()) - 1;
 }
 
-void AddPlane(const Obstacle& o, const Eigen::Vector3d& point, const Eigen::Vector3d& centre,
+void AddPlane(const PlaneObstacle& o, const Eigen::Vector3d& point, const Eigen::Vector3d& centre,
               double extent, VtkMesh* mesh) {
-  const Eigen::Vector3d n = o.normal;
+  const Eigen::Vector3d n = o.normal();
   const Eigen::Vector3d foot = centre - n * n.dot(centre - point);
-  if (o.dimension == 2) {
+  if (o.dimension() == 2) {
     const Eigen::Vector3d tangent(-n[1], n[0], 0.0);
     const int a = AddPoint(mesh, foot - extent * tangent);
     const int b = AddPoint(mesh, foot + extent * tangent);
@@ -39,9 +44,9 @@ void AddPlane(const Obstacle& o, const Eigen::Vector3d& point, const Eigen::Vect
   mesh->AddCell(VtkCell::kQuad, quad);
 }
 
-void AddSphere(const Obstacle& o, const Eigen::Vector3d& c, VtkMesh* mesh) {
-  const double r = o.radius;
-  if (o.dimension == 2) {
+void AddSphere(const SphereObstacle& o, const Eigen::Vector3d& c, VtkMesh* mesh) {
+  const double r = o.radius();
+  if (o.dimension() == 2) {
     std::vector<int> polygon;
     for (int s = 0; s < kCircleSegments; ++s) {
       const double angle = 2.0 * kPi * s / kCircleSegments;
@@ -77,9 +82,9 @@ void AddSphere(const Obstacle& o, const Eigen::Vector3d& c, VtkMesh* mesh) {
   }
 }
 
-void AddBox(const Obstacle& o, const Eigen::Vector3d& shift, VtkMesh* mesh) {
-  const Eigen::Vector3d lo = o.lower + shift, hi = o.upper + shift;
-  if (o.dimension == 2) {
+void AddBox(const BoxObstacle& o, const Eigen::Vector3d& shift, VtkMesh* mesh) {
+  const Eigen::Vector3d lo = o.lower() + shift, hi = o.upper() + shift;
+  if (o.dimension() == 2) {
     mesh->AddCell(VtkCell::kPolygon,
                   {AddPoint(mesh, {lo[0], lo[1], 0}), AddPoint(mesh, {hi[0], lo[1], 0}),
                    AddPoint(mesh, {hi[0], hi[1], 0}), AddPoint(mesh, {lo[0], hi[1], 0})});
@@ -99,27 +104,36 @@ void AddBox(const Obstacle& o, const Eigen::Vector3d& shift, VtkMesh* mesh) {
   }
 }
 
+// Each shape drawn at time t.
+class ShapeDrawer : public ObstacleVisitor {
+ public:
+  ShapeDrawer(double t, const Eigen::Vector3d& centre, double extent, VtkMesh* mesh)
+      : t_(t), centre_(centre), extent_(extent), mesh_(mesh) {}
+  void Visit(const PlaneObstacle& plane) override {
+    AddPlane(plane, plane.point() + plane.Shift(t_), centre_, extent_, mesh_);
+  }
+  void Visit(const SphereObstacle& sphere) override {
+    AddSphere(sphere, sphere.center() + sphere.Shift(t_), mesh_);
+  }
+  void Visit(const BoxObstacle& box) override { AddBox(box, box.Shift(t_), mesh_); }
+
+ private:
+  double t_;
+  Eigen::Vector3d centre_;
+  double extent_;
+  VtkMesh* mesh_;
+};
+
 }  // namespace
 
-VtkMesh ObstacleMesh(const std::vector<Obstacle>& obstacles, double t,
-                     const Eigen::Vector3d& centre, double extent) {
+VtkMesh ObstacleMesh(const ObstacleList& obstacles, double t, const Eigen::Vector3d& centre,
+                     double extent) {
   VtkMesh mesh;
   std::vector<int> owner;
+  ShapeDrawer drawer(t, centre, extent, &mesh);
   for (size_t i = 0; i < obstacles.size(); ++i) {
-    const Obstacle& o = obstacles[i];
-    const Eigen::Vector3d shift = o.velocity * t;
     const size_t cells = mesh.cells.size();
-    switch (o.type) {
-      case ObstacleType::kPlane:
-        AddPlane(o, o.point + shift, centre, extent, &mesh);
-        break;
-      case ObstacleType::kSphere:
-        AddSphere(o, o.point + shift, &mesh);
-        break;
-      case ObstacleType::kBox:
-        AddBox(o, shift, &mesh);
-        break;
-    }
+    obstacles[i]->Accept(drawer);
     owner.insert(owner.end(), mesh.cells.size() - cells, static_cast<int>(i));
   }
   mesh.cell_integers.push_back({"obstacle", owner});

@@ -14,7 +14,7 @@
 
 namespace ipstep {
 
-VtkMesh ObstacleMesh(const std::vector<Obstacle>& obstacles, double t,
-                     const Eigen::Vector3d& centre, double extent);
+VtkMesh ObstacleMesh(const ObstacleList& obstacles, double t, const Eigen::Vector3d& centre,
+                     double extent);
 
 }  // namespace ipstep

@@ -19,8 +19,8 @@ EdgeObstaclePairs::EdgeObstaclePairs(const PairSetContext& context) : c_(context
 
 double EdgeObstaclePairs::Distance(const double* x, double t, const Pair& p,
                                    Eigen::Vector3d* grad_a, Eigen::Vector3d* grad_b) const {
-  return (*c_.obstacles)[p.obstacle].EdgeDistance(p.feature, End(x, p.edge, 0), End(x, p.edge, 1),
-                                                  t, grad_a, grad_b);
+  return (*c_.obstacles)[p.obstacle]->EdgeDistance(p.feature, End(x, p.edge, 0), End(x, p.edge, 1),
+                                                   t, grad_a, grad_b);
 }
 
 std::vector<EdgeObstaclePairs::Pair> EdgeObstaclePairs::All(bool free_only) const {
@@ -29,7 +29,7 @@ std::vector<EdgeObstaclePairs::Pair> EdgeObstaclePairs::All(bool free_only) cons
   for (size_t e = 0; e < c_.mesh->edges.size(); ++e) {
     if (free_only && !node_free[edge_slots_[e][0]] && !node_free[edge_slots_[e][1]]) continue;
     for (size_t o = 0; o < c_.obstacles->size(); ++o) {
-      const int features = (*c_.obstacles)[o].NumEdgeFeatures();
+      const int features = (*c_.obstacles)[o]->NumEdgeFeatures();
       for (int f = 0; f < features; ++f) {
         pairs.push_back(Pair{static_cast<int>(e), static_cast<int>(o), f});
       }
@@ -50,7 +50,7 @@ bool EdgeObstaclePairs::Extend(const CandidateRegion& region) {
     }
     if (pairs_.Contains(pair)) continue;
     double alpha = 0.0;
-    PointSegmentDistance((*c_.obstacles)[pair.obstacle].EdgeFeature(pair.feature, *c_.time),
+    PointSegmentDistance((*c_.obstacles)[pair.obstacle]->EdgeFeature(pair.feature, *c_.time),
                          End(region.start, pair.edge, 0), End(region.start, pair.edge, 1), &alpha);
     added |= pairs_.Insert(pair, alpha);
   }
@@ -67,7 +67,8 @@ bool EdgeObstaclePairs::Missing(const double* x) const {
 double EdgeObstaclePairs::TimeOfImpact(const double* a, const double* b, double t_a,
                                        double t_b) const {
   double first = kNoImpact;
-  for (const Obstacle& obstacle : *c_.obstacles) {
+  for (const ObstaclePtr& obstacle_ptr : *c_.obstacles) {
+    const Obstacle& obstacle = *obstacle_ptr;
     const int features = obstacle.NumEdgeFeatures();
     if (features == 0) continue;
     for (size_t e = 0; e < c_.mesh->edges.size(); ++e) {
@@ -99,18 +100,16 @@ double EdgeObstaclePairs::ShrinkToClear(const double* from, const double* to, do
 
 std::string EdgeObstaclePairs::Conflict(const double* a, const double* x, double t) const {
   if (c_.dimension != 2) return "";
-  for (const Obstacle& obstacle : *c_.obstacles) {
-    if (obstacle.type == ObstacleType::kPlane) continue;
-    // Features that can cross an edge's interior first, in world coordinates.
-    const Eigen::Vector3d shift = obstacle.velocity * t;
+  for (const ObstaclePtr& obstacle_ptr : *c_.obstacles) {
+    const Obstacle& obstacle = *obstacle_ptr;
+    // Features that can cross an edge's interior first (a circle's centre,
+    // a box's corners; a plane has none and no edge can cross it first), in
+    // world coordinates.
+    const int num_features = obstacle.NumEdgeFeatures();
+    if (num_features == 0) continue;
     std::vector<Eigen::Vector2d> features;
-    if (obstacle.type == ObstacleType::kSphere) {
-      features.push_back((obstacle.point + shift).head<2>());
-    } else {
-      for (int corner = 0; corner < 4; ++corner) {
-        features.emplace_back((corner & 1 ? obstacle.upper : obstacle.lower)[0] + shift[0],
-                              (corner & 2 ? obstacle.upper : obstacle.lower)[1] + shift[1]);
-      }
+    for (int k = 0; k < num_features; ++k) {
+      features.push_back(obstacle.EdgeFeature(k, t).head<2>());
     }
     auto node = [](const double* y, int i) { return Eigen::Vector2d(y[2 * i], y[2 * i + 1]); };
     for (const auto& e : c_.mesh->edges) {
@@ -118,7 +117,7 @@ std::string EdgeObstaclePairs::Conflict(const double* a, const double* x, double
       // The segment p -> q read as a point path: it meets the grown obstacle.
       if (obstacle.TimeOfImpact(p, q, t, t, c_.margin) <= 1.0) {
         std::ostringstream out;
-        out << "boundary edge (" << e[0] << ", " << e[1] << ") meets " << obstacle.name;
+        out << "boundary edge (" << e[0] << ", " << e[1] << ") meets " << obstacle.name();
         return out.str();
       }
       if (a == x) continue;
@@ -126,7 +125,7 @@ std::string EdgeObstaclePairs::Conflict(const double* a, const double* x, double
         if (PointEdgeTimeOfImpact(f, f, node(a, e[0]), node(x, e[0]), node(a, e[1]),
                                   node(x, e[1])) <= 1.0) {
           std::ostringstream out;
-          out << "boundary edge (" << e[0] << ", " << e[1] << ") sweeps across " << obstacle.name;
+          out << "boundary edge (" << e[0] << ", " << e[1] << ") sweeps across " << obstacle.name();
           return out.str();
         }
       }
@@ -144,7 +143,7 @@ std::string EdgeObstaclePairs::FindPenetration(const double* x, double t) const 
       const auto& e = c_.mesh->edges[p.edge];
       std::ostringstream out;
       out << "edge (" << e[0] << ", " << e[1] << ") is inside or touching "
-          << (*c_.obstacles)[p.obstacle].name << " (distance " << d << ")";
+          << (*c_.obstacles)[p.obstacle]->name() << " (distance " << d << ")";
       return out.str();
     }
   }
@@ -186,7 +185,7 @@ void EdgeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
     term.family = c_.barrier_family;
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
-    const Obstacle& obstacle = (*c_.obstacles)[pair.obstacle];
+    const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
     auto cost = std::make_unique<EdgeObstacleGap>(
         c_.dimension, &obstacle, pair.feature, c_.time, c_.d_hat, c_.margin,
         obstacle.FeatureRadius() > 0.0 ? &pairs_.data()[k] : nullptr);
@@ -202,7 +201,7 @@ double EdgeObstaclePairs::Lag(const double* x) {
   std::vector<double>& alpha = pairs_.data();
   for (size_t k = 0; k < pairs_.size(); ++k) {
     const Pair& p = pairs_[k];
-    const Obstacle& o = (*c_.obstacles)[p.obstacle];
+    const Obstacle& o = *(*c_.obstacles)[p.obstacle];
     const Eigen::Vector3d a = End(x, p.edge, 0), b = End(x, p.edge, 1);
     double closest = 0.0;
     PointSegmentDistance(o.EdgeFeature(p.feature, *c_.time), a, b, &closest);

@@ -20,10 +20,11 @@ double MeshObstaclePairs::TimeOfImpact(const double* a, const double* b, double 
   // (1 - phi) D > rho; the obstacle's signed distance of m bounds every D.
   const double phi = Obstacle::kEdgeGapFraction;
   auto safe = [&](double d, double rho) { return d - rho > margin_ && (1.0 - phi) * d > rho; };
-  for (const Obstacle& obstacle : *obstacles_) {
+  for (const ObstaclePtr& obstacle_ptr : *obstacles_) {
+    const Obstacle& obstacle = *obstacle_ptr;
     const int features = obstacle.NumFaceFeatures(), box_edges = obstacle.NumBoxEdges();
     if (features == 0 && box_edges == 0) continue;
-    const Eigen::Vector3d shift_a = obstacle.velocity * t_a, shift_b = obstacle.velocity * t_b;
+    const Eigen::Vector3d shift_a = obstacle.Shift(t_a), shift_b = obstacle.Shift(t_b);
     for (size_t f = 0; f < surface_->faces.size() && features > 0; ++f) {
       const auto& face = surface_->faces[f];
       Eigen::Vector3d v0[3], v1[3];

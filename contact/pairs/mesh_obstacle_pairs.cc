@@ -69,7 +69,8 @@ MeshObstaclePairs::MeshObstaclePairs(const PairSetContext& context)
       slot_free_(*context.node_free),
       d_hat_(context.d_hat),
       margin_(context.margin) {
-  for (const Obstacle& o : *obstacles_) {
+  for (const ObstaclePtr& o_ptr : *obstacles_) {
+    const Obstacle& o = *o_ptr;
     active_ |= (o.NumFaceFeatures() > 0 && !surface_->faces.empty()) ||
                (o.NumBoxEdges() > 0 && !surface_->edges.empty());
   }
@@ -113,16 +114,16 @@ double MeshObstaclePairs::EdgeReach(int edge, const std::vector<double>& reach) 
 double MeshObstaclePairs::Distance(const double* x, double t, const FacePair& p,
                                    Eigen::Vector3d* grad, Eigen::Vector3d* weights) const {
   const auto& f = surface_->faces[p.face];
-  return (*obstacles_)[p.obstacle].FaceDistance(p.feature, Vertex(x, f[0]), Vertex(x, f[1]),
-                                                Vertex(x, f[2]), t, grad, weights);
+  return (*obstacles_)[p.obstacle]->FaceDistance(p.feature, Vertex(x, f[0]), Vertex(x, f[1]),
+                                                 Vertex(x, f[2]), t, grad, weights);
 }
 
 double MeshObstaclePairs::Distance(const double* x, double t, const BoxEdgePair& p,
                                    Eigen::Vector3d* grad, double* s) const {
   const auto& e = surface_->edges[p.edge];
-  return (*obstacles_)[p.obstacle].BoxEdgeDistance(p.box_edge, Vertex(x, e[0]), Vertex(x, e[1]), t,
-                                                   grad ? &grad[0] : nullptr,
-                                                   grad ? &grad[1] : nullptr, s);
+  return (*obstacles_)[p.obstacle]->BoxEdgeDistance(p.box_edge, Vertex(x, e[0]), Vertex(x, e[1]), t,
+                                                    grad ? &grad[0] : nullptr,
+                                                    grad ? &grad[1] : nullptr, s);
 }
 
 template <class Cutoff, class OnFace, class OnEdge>
@@ -131,7 +132,7 @@ void MeshObstaclePairs::ForEachNear(const double* x, double t, bool free_only,
                                     const std::vector<double>* travel, const OnFace& on_face,
                                     const OnEdge& on_edge) const {
   if (!active_) return;
-  const std::vector<Obstacle>& obstacles = *obstacles_;
+  const ObstacleList& obstacles = *obstacles_;
   const int num_obstacles = static_cast<int>(obstacles.size());
   // A feature at distance D from the ball's centre m (minus R for a sphere) is
   // at least D - rho from the primitive: it can be below the cutoff only if
@@ -146,7 +147,7 @@ void MeshObstaclePairs::ForEachNear(const double* x, double t, bool free_only,
         std::max({(v[0] - m).squaredNorm(), (v[1] - m).squaredNorm(), (v[2] - m).squaredNorm()}));
     const double cutoff = face_cutoff(f);
     for (int o = 0; o < num_obstacles; ++o) {
-      const Obstacle& obstacle = obstacles[o];
+      const Obstacle& obstacle = *obstacles[o];
       const int features = obstacle.NumFaceFeatures();
       if (features == 0) continue;
       const double limit = cutoff + (travel ? (*travel)[o] : 0.0) + rho;
@@ -165,7 +166,7 @@ void MeshObstaclePairs::ForEachNear(const double* x, double t, bool free_only,
     const double rho = 0.5 * (b - a).norm();
     const double cutoff = edge_cutoff(e);
     for (int o = 0; o < num_obstacles; ++o) {
-      const Obstacle& obstacle = obstacles[o];
+      const Obstacle& obstacle = *obstacles[o];
       const int box_edges = obstacle.NumBoxEdges();
       if (box_edges == 0) continue;
       const double limit = cutoff + (travel ? (*travel)[o] : 0.0) + rho;
@@ -228,12 +229,12 @@ double MeshObstaclePairs::Lag(const double* x, double t) {
   double excess = 0.0;
   for (size_t k = 0; k < face_pairs_.size(); ++k) {
     const FacePair& p = face_pairs_[k];
-    if (!((*obstacles_)[p.obstacle].FeatureRadius() > 0.0)) continue;  // true distance
+    if (!((*obstacles_)[p.obstacle]->FeatureRadius() > 0.0)) continue;  // true distance
     const auto& f = surface_->faces[p.face];
     Eigen::Vector3d w;
     const double d = Distance(x, t, p, nullptr, &w);
     if (d > 0.0 && d < d_hat_) {
-      const double lagged = (*obstacles_)[p.obstacle].FacePointDistance(
+      const double lagged = (*obstacles_)[p.obstacle]->FacePointDistance(
           p.feature, Vertex(x, f[0]), Vertex(x, f[1]), Vertex(x, f[2]), face_lag_[k], t);
       excess = std::max(excess, (lagged - d) / d);
     }
@@ -252,7 +253,7 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     term.family = family;
     term.impulsive = true;
     term.nodes = {f[0], f[1], f[2]};
-    const Obstacle& obstacle = (*obstacles_)[p.obstacle];
+    const Obstacle& obstacle = *(*obstacles_)[p.obstacle];
     auto cost =
         std::make_unique<FaceObstacleGap>(&obstacle, p.feature, time, d_hat_, margin_,
                                           obstacle.FeatureRadius() > 0.0 ? &face_lag_[k] : nullptr);
@@ -269,7 +270,7 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     term.family = family;
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
-    auto cost = std::make_unique<EdgeBoxEdgeGap>(&(*obstacles_)[p.obstacle], p.box_edge, time,
+    auto cost = std::make_unique<EdgeBoxEdgeGap>((*obstacles_)[p.obstacle].get(), p.box_edge, time,
                                                  d_hat_, margin_);
     term.curvature = GapCurvature(cost.get());
     term.cost = std::move(cost);
@@ -288,14 +289,14 @@ std::string MeshObstaclePairs::FindPenetration(const double* x, double t) const 
         if (!out.str().empty() || d > margin_) return;
         const auto& f = surface_->faces[p.face];
         out << "face (" << f[0] << ", " << f[1] << ", " << f[2] << ") is inside or touching "
-            << (*obstacles_)[p.obstacle].name << " (distance " << d << ")";
+            << (*obstacles_)[p.obstacle]->name() << " (distance " << d << ")";
       },
       [&](const BoxEdgePair& p) {
         const double d = Distance(x, t, p);
         if (!out.str().empty() || d > margin_) return;
         const auto& e = surface_->edges[p.edge];
         out << "edge (" << e[0] << ", " << e[1] << ") touches an edge of "
-            << (*obstacles_)[p.obstacle].name << " (distance " << d << ")";
+            << (*obstacles_)[p.obstacle]->name() << " (distance " << d << ")";
       });
   if (!out.str().empty()) return out.str();
   // Static only: a 3D box can hold a cloth edge passing through it (both ends
@@ -303,12 +304,13 @@ std::string MeshObstaclePairs::FindPenetration(const double* x, double t) const 
   // corner or face edge touched). Continuous motion from a free state passes
   // a touching configuration first, caught above; this is for the initial
   // state.
-  for (const Obstacle& obstacle : *obstacles_) {
+  for (const ObstaclePtr& obstacle_ptr : *obstacles_) {
+    const Obstacle& obstacle = *obstacle_ptr;
     if (obstacle.NumBoxEdges() == 0) continue;
     for (const auto& e : surface_->edges) {
       const Eigen::Vector3d a = Vertex(x, e[0]), b = Vertex(x, e[1]);
       if (obstacle.TimeOfImpact(a, b, t, t, margin_) <= 1.0) {
-        out << "edge (" << e[0] << ", " << e[1] << ") passes through " << obstacle.name;
+        out << "edge (" << e[0] << ", " << e[1] << ") passes through " << obstacle.name();
         return out.str();
       }
     }
@@ -322,8 +324,8 @@ std::string MeshObstaclePairs::FindPenetration(const double* x, double t) const 
       if (obstacle.Distance(m, t) > rho) continue;
       for (int k = 0; k < 12; ++k) {
         if (SegmentIntersectsTriangle(p[k], q[k], a, b, c)) {
-          out << "an edge of " << obstacle.name << " passes through face (" << f[0] << ", " << f[1]
-              << ", " << f[2] << ")";
+          out << "an edge of " << obstacle.name() << " passes through face (" << f[0] << ", "
+              << f[1] << ", " << f[2] << ")";
           return out.str();
         }
       }

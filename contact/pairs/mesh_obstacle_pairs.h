@@ -1,6 +1,7 @@
 // Pair kind (3D): the collision mesh's faces against the obstacles' face
 // features (sphere centre, 3D box corners; Obstacle::FaceDistance) and its
-// edges against 3D box edges (Obstacle::BoxEdgeDistance).
+// edges against 3D box edges (Obstacle::BoxEdgeDistance), with friction
+// (contact/primitive_obstacle_friction.h).
 //
 // Barrier (FaceObstacleGap, EdgeBoxEdgeGap in contact/contact_terms.h): weight
 // the face's / edge's weight (contact/collision_mesh.h). Against a sphere's
@@ -29,6 +30,7 @@
 #include <Eigen/Core>
 
 #include "contact/pair_set.h"
+#include "contact/primitive_obstacle_friction.h"
 
 namespace ipstep {
 
@@ -57,6 +59,11 @@ class MeshObstaclePairs : public PairSet {
   void AddBarrierTerms(IncrementalPotential* potential) const override {
     AddBarrierTerms(potential, c_.barrier_family, c_.time, c_.kappa);
   }
+  // Friction (contact/pairs/mesh_obstacle_friction.cc): lagged closest
+  // point, normal and normal force of every active pair within d_hat.
+  void LagFriction(const double* x, double t) override;
+  int AddFrictionTerms(const FrictionSettings& friction,
+                       IncrementalPotential* potential) const override;
   void Near(const double* x, double t, double reach, double* min_distance,
             int* count) const override {
     *min_distance = std::min(*min_distance, MinDistance(x, t, reach));
@@ -147,7 +154,7 @@ class MeshObstaclePairs : public PairSet {
 
   PairSetContext c_;
   const CollisionMesh* surface_;
-  const std::vector<Obstacle>* obstacles_;
+  const ObstacleList* obstacles_;
   std::vector<bool> slot_free_;
   double d_hat_;
   double margin_;
@@ -161,6 +168,7 @@ class MeshObstaclePairs : public PairSet {
   std::vector<FacePair> previous_faces_;     // emptied by Clear
   std::vector<BoxEdgePair> previous_box_edges_;
   std::vector<Eigen::Vector3d> saved_lag_;
+  std::vector<PrimitiveObstacleFrictionLag> friction_;
 };
 
 }  // namespace ipstep

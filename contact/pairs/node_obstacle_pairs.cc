@@ -18,12 +18,12 @@ Eigen::Vector3d NodeObstaclePairs::Point(const double* x, int slot) const {
 
 bool NodeObstaclePairs::Extend(const CandidateRegion& region) {
   bool added = false;
-  const std::vector<Obstacle>& obstacles = *c_.obstacles;
+  const ObstacleList& obstacles = *c_.obstacles;
   for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
     if (!(*c_.node_free)[s]) continue;
     const Eigen::Vector3d p = Point(region.start, static_cast<int>(s));
     for (size_t o = 0; o < obstacles.size(); ++o) {
-      const double d = obstacles[o].Distance(p, *c_.time);
+      const double d = obstacles[o]->Distance(p, *c_.time);
       if (d < c_.d_hat + (*region.reach)[s] + (*region.travel)[o]) {
         added |= pairs_.Insert(Pair{static_cast<int>(s), static_cast<int>(o)});
       }
@@ -33,11 +33,11 @@ bool NodeObstaclePairs::Extend(const CandidateRegion& region) {
 }
 
 bool NodeObstaclePairs::Missing(const double* x) const {
-  const std::vector<Obstacle>& obstacles = *c_.obstacles;
+  const ObstacleList& obstacles = *c_.obstacles;
   for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
     if (!(*c_.node_free)[s]) continue;
     for (size_t o = 0; o < obstacles.size(); ++o) {
-      if (obstacles[o].Distance(Point(x, static_cast<int>(s)), *c_.time) < c_.d_hat &&
+      if (obstacles[o]->Distance(Point(x, static_cast<int>(s)), *c_.time) < c_.d_hat &&
           !pairs_.Contains(Pair{static_cast<int>(s), static_cast<int>(o)})) {
         return true;
       }
@@ -51,7 +51,8 @@ double NodeObstaclePairs::TimeOfImpact(const double* a, const double* b, double 
   double first = kNoImpact;
   for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
     const Eigen::Vector3d pa = Point(a, static_cast<int>(s)), pb = Point(b, static_cast<int>(s));
-    for (const Obstacle& o : *c_.obstacles) {
+    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
+      const Obstacle& o = *o_ptr;
       first = std::min(first, o.TimeOfImpact(pa, pb, t_a, t_b, c_.margin));
     }
   }
@@ -60,12 +61,13 @@ double NodeObstaclePairs::TimeOfImpact(const double* a, const double* b, double 
 
 std::string NodeObstaclePairs::FindPenetration(const double* x, double t) const {
   for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    for (const Obstacle& o : *c_.obstacles) {
+    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
+      const Obstacle& o = *o_ptr;
       const double d = o.Distance(Point(x, static_cast<int>(s)), t);
       if (!(d > c_.margin)) {
         std::ostringstream out;
-        out << "node " << c_.mesh->nodes[s] << " is inside or touching " << o.name << " (distance "
-            << d << ")";
+        out << "node " << c_.mesh->nodes[s] << " is inside or touching " << o.name()
+            << " (distance " << d << ")";
         return out.str();
       }
     }
@@ -76,7 +78,8 @@ std::string NodeObstaclePairs::FindPenetration(const double* x, double t) const 
 void NodeObstaclePairs::Near(const double* x, double t, double reach, double* min_distance,
                              int* count) const {
   for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    for (const Obstacle& o : *c_.obstacles) {
+    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
+      const Obstacle& o = *o_ptr;
       const double d = o.Distance(Point(x, static_cast<int>(s)), t);
       if (d < reach) {
         *min_distance = std::min(*min_distance, d);
@@ -90,7 +93,8 @@ void NodeObstaclePairs::AddBarrierGradient(const double* x, double t, double sca
                                            Eigen::VectorXd* g) const {
   const int dim = c_.dimension;
   for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    for (const Obstacle& o : *c_.obstacles) {
+    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
+      const Obstacle& o = *o_ptr;
       Eigen::Vector3d grad;
       const double d = o.Distance(Point(x, static_cast<int>(s)), t, &grad);
       if (!(d > 0.0 && d < c_.d_hat)) continue;
@@ -107,11 +111,11 @@ void NodeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
     term.family = c_.barrier_family;
     term.impulsive = true;
     term.nodes = {c_.mesh->nodes[pair.slot]};
-    const Obstacle& obstacle = (*c_.obstacles)[pair.obstacle];
+    const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
     auto cost =
         std::make_unique<PointObstacleGap>(c_.dimension, &obstacle, c_.time, c_.d_hat, c_.margin);
-    if (obstacle.type == ObstacleType::kPlane) {
-      term.gauss_newton_model = true;  // the plane's distance is affine
+    if (obstacle.distance_is_affine()) {
+      term.gauss_newton_model = true;  // a plane's distance: its model is exact
     } else {
       term.curvature = GapCurvature(cost.get());
     }
@@ -124,13 +128,13 @@ void NodeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
 void NodeObstaclePairs::LagFriction(const double* x, double t) {
   lagged_.clear();
   for (const Pair& pair : pairs_.pairs()) {
-    const Obstacle& o = (*c_.obstacles)[pair.obstacle];
+    const Obstacle& o = *(*c_.obstacles)[pair.obstacle];
     Eigen::Vector3d n;
     const double d = o.Distance(Point(x, pair.slot), t, &n);
     if (!(d > 0.0 && d < c_.d_hat)) continue;
     const double lambda = -*c_.kappa * c_.mesh->weights[pair.slot] * BarrierDerivative(d, c_.d_hat);
     lagged_.push_back(LaggedFriction{c_.mesh->nodes[pair.slot], TangentBasis(n, c_.dimension),
-                                     o.velocity, lambda});
+                                     o.velocity(), lambda});
   }
 }
 

@@ -1,7 +1,8 @@
 // What the two 3D self-contact pair kinds (point_triangle_pairs.h,
-// edge_edge_pairs.h) share: node positions, node slots, the boxes of
-// primitives over a linear motion and the broad phase (contact/bvh.h) that
-// pairs them, the tangent basis of a contact normal.
+// edge_edge_pairs.h) share: node positions, node slots (the collision mesh's
+// table, NodeSlot), the boxes of primitives over a linear motion and the
+// broad phase (contact/bvh.h) that pairs them, the tangent basis of a contact
+// normal.
 //
 // Broad phase: the BVH was measured faster than the spatial hash on a folded
 // 100 x 100 cloth (bench/broad_phase_bench.cc, numbers in the commit and
@@ -23,17 +24,12 @@ namespace ipstep {
 
 class SelfContactMesh {
  public:
-  explicit SelfContactMesh(const CollisionMesh* mesh) : mesh_(mesh) {
-    int largest = -1;
-    for (int node : mesh->nodes) largest = std::max(largest, node);
-    slot_.assign(largest + 1, -1);
-    for (size_t s = 0; s < mesh->nodes.size(); ++s) slot_[mesh->nodes[s]] = static_cast<int>(s);
-  }
+  explicit SelfContactMesh(const CollisionMesh* mesh) : mesh_(mesh) {}
   const CollisionMesh& mesh() const { return *mesh_; }
-  int slot(int node) const { return slot_[node]; }
+  int slot(int node) const { return NodeSlot(*mesh_, node); }
   // Coordinates of a configuration up to the mesh's largest node (what the
   // mesh's primitives read of it).
-  int num_coordinates() const { return 3 * static_cast<int>(slot_.size()); }
+  int num_coordinates() const { return 3 * static_cast<int>(mesh_->node_slots.size()); }
 
   static Eigen::Vector3d Vertex(const double* x, int node) {
     return Eigen::Vector3d(x[3 * node], x[3 * node + 1], x[3 * node + 2]);
@@ -68,7 +64,6 @@ class SelfContactMesh {
 
  private:
   const CollisionMesh* mesh_;
-  std::vector<int> slot_;
 };
 
 // Orthonormal tangent basis (3 x 2) of the plane normal to the unit n.

@@ -13,6 +13,8 @@
 #include "contact/collision_mesh.h"
 #include "contact/contact_terms.h"
 #include "contact/obstacle.h"
+#include "contact/obstacles/box_obstacle.h"
+#include "contact/obstacles/sphere_obstacle.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
 #include "core/input_error.h"
@@ -191,21 +193,13 @@ TEST(PointTriangle, SegmentIntersection) {
   EXPECT_FALSE(SegmentIntersectsTriangle(V(-1, 0.5, 0), V(-0.2, 0.5, 0), a, b, c));
 }
 
-Obstacle Sphere3(double radius) {
-  Obstacle o;
-  o.type = ObstacleType::kSphere;
-  o.dimension = 3;
-  o.radius = radius;
-  return o;
+SphereObstacle Sphere3(double radius, const V& velocity = V::Zero()) {
+  return SphereObstacle(3, V::Zero(), radius, velocity);
 }
 
-Obstacle Box3() {
-  Obstacle o;
-  o.type = ObstacleType::kBox;
-  o.dimension = 3;
-  o.lower = V(-0.5, -0.4, -0.3);
-  o.upper = V(0.5, 0.0, 0.3);
-  return o;
+BoxObstacle Box3(int dimension = 3) {
+  return BoxObstacle(dimension, V(-0.5, -0.4, dimension == 3 ? -0.3 : 0.0),
+                     V(0.5, 0.0, dimension == 3 ? 0.3 : 0.0));
 }
 
 TEST(Obstacle, FaceFeaturesAndBoxEdges) {
@@ -214,13 +208,12 @@ TEST(Obstacle, FaceFeaturesAndBoxEdges) {
   EXPECT_EQ(Box3().NumFaceFeatures(), 8);
   EXPECT_EQ(Box3().NumBoxEdges(), 12);
   EXPECT_EQ(Box3().NumEdgeFeatures(), 0);
-  Obstacle box2 = Box3();
-  box2.dimension = 2;
+  const BoxObstacle box2 = Box3(2);
   EXPECT_EQ(box2.NumFaceFeatures(), 0);
   EXPECT_EQ(box2.NumBoxEdges(), 0);
   EXPECT_EQ(box2.NumEdgeFeatures(), 4);
   // Every corner once; every box edge joins two corners differing in one axis.
-  const Obstacle box = Box3();
+  const BoxObstacle box = Box3();
   std::vector<V> corners;
   for (int k = 0; k < 8; ++k) corners.push_back(box.FaceFeature(k, 0.0));
   for (int i = 0; i < 8; ++i) {
@@ -248,7 +241,7 @@ double SampledMinimum(const Gap& gap, double s, int n = 2000) {
 }
 
 TEST(FaceCollision, TriangleIsStoppedBeforeASmallSphere) {
-  const Obstacle sphere = Sphere3(0.01);
+  const SphereObstacle sphere = Sphere3(0.01);
   const double margin = 1e-12;
   // A large triangle falling flat through the sphere: its vertices pass far
   // outside, only the interior meets the sphere.
@@ -271,12 +264,11 @@ TEST(FaceCollision, TriangleIsStoppedBeforeASmallSphere) {
   for (int k = 0; k < 3; ++k) v1[k] = v0[k] + V(3, -0.3, 0);
   EXPECT_EQ(sphere.FaceTimeOfImpact(0, v0, v1, 0.0, 0.0, margin), Obstacle::kNoImpact);
   // Oblique through the sphere, the sphere moving too (relative motion counts).
-  Obstacle moving = sphere;
-  moving.velocity = V(0, 2, 0);
+  const SphereObstacle moving = Sphere3(0.01, V(0, 2, 0));
   for (int k = 0; k < 3; ++k) v1[k] = v0[k] + V(0.3, -0.2, 0.1);
   auto moving_gap = [&](double s) {
     V y[3];
-    for (int k = 0; k < 3; ++k) y[k] = v0[k] + s * (v1[k] - v0[k]) - moving.velocity * (0.5 * s);
+    for (int k = 0; k < 3; ++k) y[k] = v0[k] + s * (v1[k] - v0[k]) - moving.velocity() * (0.5 * s);
     return PointTriangleDistance(V::Zero(), y[0], y[1], y[2]).distance - 0.01;
   };
   const double sm = moving.FaceTimeOfImpact(0, v0, v1, 0.0, 0.5, margin);
@@ -291,7 +283,7 @@ TEST(FaceCollision, TriangleIsStoppedBeforeASmallSphere) {
 }
 
 TEST(FaceCollision, TriangleIsStoppedBeforeABoxCorner) {
-  const Obstacle box = Box3();
+  const BoxObstacle box = Box3();
   const V corner = box.FaceFeature(7, 0.0);  // (0.5, 0, 0.3)
   // A triangle tilted over the corner, all vertices outside the box, sliding
   // down and across it: the corner would pierce its interior.
@@ -318,7 +310,7 @@ TEST(FaceCollision, TriangleIsStoppedBeforeABoxCorner) {
 }
 
 TEST(BoxEdgeCollision, SegmentCrossingABoxEdgeIsStopped) {
-  const Obstacle box = Box3();
+  const BoxObstacle box = Box3();
   // Box edge 1 runs along x at y = upper (0), z = lower (-0.3) (bit 0: next
   // axis y upper; bit 1 clear: the axis after, z, lower).
   V p, q;
@@ -360,9 +352,8 @@ void CheckJacobian(const ceres::CostFunction& cost, std::vector<std::vector<doub
 
 TEST(FaceTerms, JacobiansMatchFiniteDifferencesAndFailInside) {
   const double d_hat = 0.05, time = 0.3;
-  Obstacle sphere = Sphere3(0.2);
-  sphere.velocity = V(0.1, -0.2, 0.3);
-  const V centre = sphere.velocity * time;
+  const SphereObstacle sphere = Sphere3(0.2, V(0.1, -0.2, 0.3));
+  const V centre = sphere.velocity() * time;
   // A triangle 0.03 above the sphere's top, its closest point inside.
   const V a = centre + V(-0.1, 0.23, -0.1), b = centre + V(0.12, 0.235, -0.05),
           c = centre + V(0.0, 0.228, 0.15);
@@ -389,7 +380,7 @@ TEST(FaceTerms, JacobiansMatchFiniteDifferencesAndFailInside) {
   EXPECT_FALSE(gap.Evaluate(y, &residual, nullptr));
 
   // Box corner 7 (0.5, 0, 0.3) against a face, and a box edge against a segment.
-  const Obstacle box = Box3();
+  const BoxObstacle box = Box3();
   const V corner = box.FaceFeature(7, 0.0);
   const V p = corner + V(-0.1, 0.02, -0.1), q = corner + V(0.1, 0.03, -0.05),
           r = corner + V(0.0, 0.025, 0.1);
@@ -480,6 +471,13 @@ TEST(CollisionMesh, UndeclaredOrDegenerateSurfaceIsAnInputError) {
   EXPECT_DOUBLE_EQ(mesh.weights[0], 0.5);  // half the edge
   EXPECT_DOUBLE_EQ(mesh.weights[2], 1.0);  // a point
   EXPECT_DOUBLE_EQ(mesh.edge_weights[0], 0.25);
+  // The node -> slot table every pair kind reads: -1 off the surface.
+  scene.surface.edges = {{0, 2}};
+  scene.surface.points.clear();
+  const CollisionMesh ends = BuildCollisionMesh(scene);
+  ASSERT_EQ(ends.nodes, std::vector<int>({0, 2}));
+  EXPECT_EQ(ends.node_slots, std::vector<int>({0, -1, 1}));
+  EXPECT_EQ(NodeSlot(ends, 2), 1);
 }
 
 }  // namespace

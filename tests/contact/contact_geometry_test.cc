@@ -13,6 +13,9 @@
 #include "contact/contact_terms.h"
 #include "contact/friction.h"
 #include "contact/obstacle.h"
+#include "contact/obstacles/box_obstacle.h"
+#include "contact/obstacles/plane_obstacle.h"
+#include "contact/obstacles/sphere_obstacle.h"
 #include "contact/point_edge.h"
 #include "contact/spatial_hash.h"
 #include "tests/support/finite_differences.h"
@@ -195,50 +198,41 @@ TEST(Friction, OneSidedSplitHasIpcCurvature) {
   }
 }
 
-Obstacle Plane2D() {
-  Obstacle o;
-  o.type = ObstacleType::kPlane;
-  o.point = Eigen::Vector3d(0, -1, 0);
-  o.normal = Eigen::Vector3d(0.1, 1, 0).normalized();
-  return o;
+PlaneObstacle Plane2D() {
+  return PlaneObstacle(2, Eigen::Vector3d(0, -1, 0), Eigen::Vector3d(0.1, 1, 0).normalized());
 }
 
-Obstacle Sphere(int dimension) {
-  Obstacle o;
-  o.type = ObstacleType::kSphere;
-  o.dimension = dimension;
-  o.point = Eigen::Vector3d(0.2, -0.1, dimension == 3 ? 0.3 : 0.0);
-  o.radius = 0.5;
-  o.velocity = Eigen::Vector3d(0.3, -0.2, 0.0);
-  return o;
+SphereObstacle Sphere(int dimension) {
+  return SphereObstacle(dimension, Eigen::Vector3d(0.2, -0.1, dimension == 3 ? 0.3 : 0.0), 0.5,
+                        Eigen::Vector3d(0.3, -0.2, 0.0));
 }
 
-Obstacle Box(int dimension) {
-  Obstacle o;
-  o.type = ObstacleType::kBox;
-  o.dimension = dimension;
-  o.lower = Eigen::Vector3d(-1, -0.5, dimension == 3 ? -0.2 : 0.0);
-  o.upper = Eigen::Vector3d(1, 0.5, dimension == 3 ? 0.2 : 0.0);
-  return o;
+BoxObstacle Box(int dimension) {
+  return BoxObstacle(dimension, Eigen::Vector3d(-1, -0.5, dimension == 3 ? -0.2 : 0.0),
+                     Eigen::Vector3d(1, 0.5, dimension == 3 ? 0.2 : 0.0));
 }
 
 TEST(Obstacle, DistanceGradientsMatchFiniteDifferences) {
-  const std::vector<Obstacle> obstacles = {Plane2D(), Sphere(2), Sphere(3), Box(2), Box(3)};
+  const std::vector<ObstaclePtr> obstacles = {
+      std::make_shared<PlaneObstacle>(Plane2D()), std::make_shared<SphereObstacle>(Sphere(2)),
+      std::make_shared<SphereObstacle>(Sphere(3)), std::make_shared<BoxObstacle>(Box(2)),
+      std::make_shared<BoxObstacle>(Box(3))};
   const std::vector<Eigen::Vector3d> points = {Eigen::Vector3d(0.3, 0.9, 0.0),
                                                Eigen::Vector3d(1.7, 0.8, 0.0),
                                                Eigen::Vector3d(-1.3, -0.7, 0.6)};
   const double t = 0.4;
-  for (const Obstacle& o : obstacles) {
+  for (const ObstaclePtr& obstacle : obstacles) {
+    const Obstacle& o = *obstacle;
     for (Eigen::Vector3d p : points) {
-      if (o.dimension == 2) p[2] = 0.0;
+      if (o.dimension() == 2) p[2] = 0.0;
       Eigen::Vector3d g;
       const double d = o.Distance(p, t, &g);
       ASSERT_GT(d, 0.0);
-      for (int k = 0; k < o.dimension; ++k) {
+      for (int k = 0; k < o.dimension(); ++k) {
         const double h = 1e-6;
         const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(k);
         const double fd = (o.Distance(p + e, t) - o.Distance(p - e, t)) / (2 * h);
-        EXPECT_NEAR(g[k], fd, 1e-7) << ObstacleTypeName(o.type) << " " << k;
+        EXPECT_NEAR(g[k], fd, 1e-7) << o.type_name() << " " << k;
       }
     }
   }
@@ -249,22 +243,17 @@ TEST(Obstacle, DistanceGradientsMatchFiniteDifferences) {
 }
 
 TEST(Obstacle, ContinuousCollisionDetection) {
-  Obstacle ground;
-  ground.point = Eigen::Vector3d(0, 0, 0);
-  ground.normal = Eigen::Vector3d(0, 1, 0);
+  const PlaneObstacle ground(2, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 1, 0));
   // From y = 1 to y = -3 crosses y = 0 at s = 0.25.
   EXPECT_NEAR(ground.TimeOfImpact({0, 1, 0}, {0, -3, 0}, 0, 0, 0), 0.25, 1e-15);
   EXPECT_GT(ground.TimeOfImpact({0, 1, 0}, {0, 0.5, 0}, 0, 0, 0), 1.0);
   // A moving ceiling catches a point at rest: y = 1 - 2 t reaches y = 0.5 at t = 0.25.
-  Obstacle ceiling;
-  ceiling.point = Eigen::Vector3d(0, 1, 0);
-  ceiling.normal = Eigen::Vector3d(0, -1, 0);
-  ceiling.velocity = Eigen::Vector3d(0, -2, 0);
+  const PlaneObstacle ceiling(2, Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0),
+                              Eigen::Vector3d(0, -2, 0));
   EXPECT_NEAR(ceiling.TimeOfImpact({0, 0.5, 0}, {0, 0.5, 0}, 0.0, 1.0, 0), 0.25, 1e-15);
   // Sphere: a point passing straight through the centre enters at the radius.
-  Obstacle sphere = Sphere(2);
-  sphere.velocity.setZero();
-  const Eigen::Vector3d c = sphere.point;
+  const SphereObstacle sphere(2, Sphere(2).center(), Sphere(2).radius());
+  const Eigen::Vector3d c = sphere.center();
   EXPECT_NEAR(
       sphere.TimeOfImpact(c + Eigen::Vector3d(-2, 0, 0), c + Eigen::Vector3d(2, 0, 0), 0, 0, 0),
       1.5 / 4.0, 1e-14);
@@ -273,10 +262,7 @@ TEST(Obstacle, ContinuousCollisionDetection) {
       sphere.TimeOfImpact(c + Eigen::Vector3d(-2, 0.6, 0), c + Eigen::Vector3d(2, 0.6, 0), 0, 0, 0),
       1.0);
   // Box: a fast point through a thin wall (x in [-1e-3, 1e-3]) is caught.
-  Obstacle wall;
-  wall.type = ObstacleType::kBox;
-  wall.lower = Eigen::Vector3d(-1e-3, -1, 0);
-  wall.upper = Eigen::Vector3d(1e-3, 1, 0);
+  const BoxObstacle wall(2, Eigen::Vector3d(-1e-3, -1, 0), Eigen::Vector3d(1e-3, 1, 0));
   EXPECT_NEAR(wall.TimeOfImpact({-1, 0, 0}, {1, 0, 0}, 0, 0, 0), (1 - 1e-3) / 2, 1e-15);
   EXPECT_GT(wall.TimeOfImpact({-1, 1.5, 0}, {1, 1.5, 0}, 0, 0, 0), 1.0);
   // The margin grows the obstacle.
@@ -329,48 +315,46 @@ TEST(PointEdge, ContinuousCollisionDetection) {
 TEST(EdgeObstacle, DistanceGradientsMatchFiniteDifferences) {
   const double t = 0.4;
   struct Probe {
-    Obstacle obstacle;
+    ObstaclePtr obstacle;
     int feature;
     Eigen::Vector3d a, b;
   };
   std::vector<Probe> probes;
   for (int dim : {2, 3}) {
-    const Obstacle s = Sphere(dim);
-    const Eigen::Vector3d c = s.EdgeFeature(0, t);
+    const auto s = std::make_shared<SphereObstacle>(Sphere(dim));
+    const Eigen::Vector3d c = s->EdgeFeature(0, t);
     const Eigen::Vector3d z = dim == 3 ? Eigen::Vector3d(0, 0, 0.1) : Eigen::Vector3d::Zero();
     probes.push_back(
         {s, 0, c + Eigen::Vector3d(-0.8, 0.6, 0) + z, c + Eigen::Vector3d(0.7, 0.5, 0)});
     probes.push_back(
         {s, 0, c + Eigen::Vector3d(0.6, 0.3, 0), c + Eigen::Vector3d(1.5, 0.9, 0) - z});
   }
-  const Obstacle box = Box(2);
+  const auto box = std::make_shared<BoxObstacle>(Box(2));
   for (int corner = 0; corner < 4; ++corner) {
-    const Eigen::Vector3d c = box.EdgeFeature(corner, t);
+    const Eigen::Vector3d c = box->EdgeFeature(corner, t);
     probes.push_back(
         {box, corner, c + Eigen::Vector3d(-0.2, 0.05, 0), c + Eigen::Vector3d(0.1, 0.2, 0)});
   }
   for (const Probe& p : probes) {
     Eigen::Vector3d ga, gb;
-    const double d = p.obstacle.EdgeDistance(p.feature, p.a, p.b, t, &ga, &gb);
+    const double d = p.obstacle->EdgeDistance(p.feature, p.a, p.b, t, &ga, &gb);
     ASSERT_GT(d, 0.0);
     for (int end = 0; end < 2; ++end) {
-      for (int k = 0; k < p.obstacle.dimension; ++k) {
+      for (int k = 0; k < p.obstacle->dimension(); ++k) {
         const double h = 1e-6;
         Eigen::Vector3d ap = p.a, am = p.a, bp = p.b, bm = p.b;
         (end == 0 ? ap : bp)[k] += h;
         (end == 0 ? am : bm)[k] -= h;
-        const double fd = (p.obstacle.EdgeDistance(p.feature, ap, bp, t) -
-                           p.obstacle.EdgeDistance(p.feature, am, bm, t)) /
+        const double fd = (p.obstacle->EdgeDistance(p.feature, ap, bp, t) -
+                           p.obstacle->EdgeDistance(p.feature, am, bm, t)) /
                           (2 * h);
         EXPECT_NEAR((end == 0 ? ga : gb)[k], fd, 1e-7)
-            << ObstacleTypeName(p.obstacle.type) << " feature " << p.feature << " end " << end;
+            << p.obstacle->type_name() << " feature " << p.feature << " end " << end;
       }
     }
   }
   // Closed forms: a horizontal segment 0.1 above a unit circle's top.
-  Obstacle circle;
-  circle.type = ObstacleType::kSphere;
-  circle.radius = 1.0;
+  const SphereObstacle circle(2, Eigen::Vector3d::Zero(), 1.0);
   EXPECT_NEAR(circle.EdgeDistance(0, {-2, 1.1, 0}, {3, 1.1, 0}, 0), 0.1, 1e-15);
   EXPECT_NEAR(circle.EdgeDistance(0, {0, 1.1, 0}, {3, 1.1, 0}, 0), 0.1, 1e-15);
   EXPECT_NEAR(circle.EdgeDistance(0, {1, 1, 0}, {3, 1, 0}, 0), std::sqrt(2.0) - 1.0, 1e-15);
@@ -381,9 +365,7 @@ TEST(EdgeObstacle, DistanceGradientsMatchFiniteDifferences) {
 
 // Conservative advancement of a moving segment against a circle / box corner.
 TEST(EdgeObstacle, ContinuousCollisionDetection) {
-  Obstacle circle;
-  circle.type = ObstacleType::kSphere;
-  circle.radius = 0.01;
+  const SphereObstacle circle(2, Eigen::Vector3d::Zero(), 0.01);
   // A 0.2 m bar falling from y = 1 to y = -1, its nodes beside the circle: the
   // gap 1 - 0.01 falls to the goal 0.1 d(0) at s = 0.9 * 0.99 / 2.
   const double s =
@@ -397,10 +379,7 @@ TEST(EdgeObstacle, ContinuousCollisionDetection) {
             1.0);
   // 3D: a bar along x at z = 0.1 sweeping down past a sphere of radius 0.2; its
   // nodes' paths stay 0.51 from the centre, only the interior comes close.
-  Obstacle sphere;
-  sphere.type = ObstacleType::kSphere;
-  sphere.dimension = 3;
-  sphere.radius = 0.2;
+  const SphereObstacle sphere(3, Eigen::Vector3d::Zero(), 0.2);
   const double hit = sphere.EdgeTimeOfImpact(0, {-0.5, 1, 0.1}, {-0.5, -1, 0.1}, {0.5, 1, 0.1},
                                              {0.5, -1, 0.1}, 0, 0, 0);
   EXPECT_LE(hit, 1.0);
@@ -419,14 +398,14 @@ TEST(EdgeObstacle, ContinuousCollisionDetection) {
             1.0);
   // A moving circle (velocity +y) sweeps into a resting bar: impact from time 0
   // to 1 (the relative path is the falling bar's).
-  circle.velocity = Eigen::Vector3d(0, 2, 0);
+  const SphereObstacle rising(2, Eigen::Vector3d::Zero(), 0.01, Eigen::Vector3d(0, 2, 0));
   EXPECT_LE(
-      circle.EdgeTimeOfImpact(0, {-0.1, 1, 0}, {-0.1, 1, 0}, {0.1, 1, 0}, {0.1, 1, 0}, 0, 1, 0),
+      rising.EdgeTimeOfImpact(0, {-0.1, 1, 0}, {-0.1, 1, 0}, {0.1, 1, 0}, {0.1, 1, 0}, 0, 1, 0),
       0.5);
   // Box corner (2D): a bar sweeping down across the top-right corner of Box(2)
   // at (1, 0.5) (the bar's line x + y from 1.7 to 1.3) with both end points
   // missing the box.
-  const Obstacle box = Box(2);
+  const BoxObstacle box = Box(2);
   EXPECT_LE(
       box.EdgeTimeOfImpact(3, {0.9, 1, 0}, {1.1, -0.5, 0}, {1.5, 1, 0}, {1.7, -0.5, 0}, 0, 0, 0),
       1.0);
@@ -455,10 +434,10 @@ void CheckJacobian(const ceres::CostFunction& cost, std::vector<std::vector<doub
 
 TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
   const double d_hat = 0.05, time = 0.3;
-  const Obstacle sphere = Sphere(3);
+  const SphereObstacle sphere = Sphere(3);
   // A point 0.02 from the moving sphere's surface: inside the barrier's reach.
-  const Eigen::Vector3d centre = sphere.point + sphere.velocity * time;
-  const Eigen::Vector3d p = centre + (sphere.radius + 0.02) * Eigen::Vector3d(0.6, 0.0, 0.8);
+  const Eigen::Vector3d centre = sphere.center() + sphere.velocity() * time;
+  const Eigen::Vector3d p = centre + (sphere.radius() + 0.02) * Eigen::Vector3d(0.6, 0.0, 0.8);
   PointObstacleGap gap(3, &sphere, &time, d_hat, 0.0);
   CheckJacobian(gap, {{p[0], p[1], p[2]}});
   double residual;
@@ -472,8 +451,8 @@ TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
 
   // Edge against the sphere's centre: the closest point 0.03 outside, interior.
   const Eigen::Vector3d n(0.0, 0.6, 0.8), tangent(1, 0, 0);
-  const Eigen::Vector3d ea = centre + (sphere.radius + 0.03) * n - 0.2 * tangent;
-  const Eigen::Vector3d eb = centre + (sphere.radius + 0.03) * n + 0.3 * tangent;
+  const Eigen::Vector3d ea = centre + (sphere.radius() + 0.03) * n - 0.2 * tangent;
+  const Eigen::Vector3d eb = centre + (sphere.radius() + 0.03) * n + 0.3 * tangent;
   EdgeObstacleGap edge_obstacle(3, &sphere, 0, &time, d_hat, 0.0);
   CheckJacobian(edge_obstacle, {{ea[0], ea[1], ea[2]}, {eb[0], eb[1], eb[2]}});
   const double* e[2] = {ea.data(), eb.data()};
@@ -484,7 +463,7 @@ TEST(ContactTerms, JacobiansMatchFiniteDifferences) {
   const double* f[2] = {fa.data(), fb.data()};
   EXPECT_FALSE(edge_obstacle.Evaluate(f, &residual, nullptr));
   // 2D box corner (lower left of Box(2) at (-1, -0.5)) against an edge.
-  const Obstacle box = Box(2);
+  const BoxObstacle box = Box(2);
   EdgeObstacleGap corner_gap(2, &box, 0, &time, d_hat, 0.0);
   CheckJacobian(corner_gap, {{-1.3, -0.47}, {-0.8, -0.53}});
 

@@ -790,7 +790,7 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
     options.optimizer.max_iterations = std::string(c.optimizer) == "newton" ? 500 : 20000;
     Simulation sim(loaded, options);
     const ContactFilter& filter = Filter(sim);
-    const Obstacle& box = filter.obstacles()[0];
+    const Obstacle& box = *filter.obstacles()[0];
     double closest = std::numeric_limits<double>::infinity();
     int contact_steps = 0;
     for (int step = 0; step < c.steps; ++step) {

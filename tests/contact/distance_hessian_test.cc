@@ -22,6 +22,9 @@
 #include "contact/contact_terms.h"
 #include "contact/distance_hessian.h"
 #include "contact/obstacle.h"
+#include "contact/obstacles/box_obstacle.h"
+#include "contact/obstacles/plane_obstacle.h"
+#include "contact/obstacles/sphere_obstacle.h"
 #include "contact/point_edge.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_parameter.h"
@@ -132,41 +135,56 @@ class Random {
 };
 
 // Obstacles: static at t = 0 or translating, seen at t = 0.7.
+enum class Shape { kPlane, kSphere, kBox };
+
 struct Scenario {
-  Obstacle obstacle;
+  ObstaclePtr obstacle;
+  Shape shape = Shape::kPlane;
+  V point = V::Zero();  // plane: a point on it; sphere: its centre
+  double radius = 0.0;
+  V lower = V::Zero(), upper = V::Zero();  // box
   double t = 0.0;
   std::string name;
 };
 
 // The gradient of the point-obstacle distance of scenario s (positions of
-// s.obstacle.dimension coordinates).
+// s.obstacle->dimension() coordinates).
 Gradient PointDistanceGradient(const Scenario& s) {
-  const int dim = s.obstacle.dimension;
+  const int dim = s.obstacle->dimension();
   return [&s, dim](const Eigen::VectorXd& y) {
     V g;
-    s.obstacle.Distance(Block(y, 0, dim), s.t, &g);
+    s.obstacle->Distance(Block(y, 0, dim), s.t, &g);
     return Eigen::VectorXd(g.head(dim));
   };
 }
 
-Scenario MakeScenario(ObstacleType type, int dimension, bool moving) {
+Scenario MakeScenario(Shape shape, int dimension, bool moving) {
   Scenario s;
-  Obstacle& o = s.obstacle;
-  o.type = type;
-  o.dimension = dimension;
-  o.point = V(0.1, -0.2, dimension == 3 ? 0.3 : 0.0);
-  o.normal = V(0.3, 0.9, dimension == 3 ? 0.2 : 0.0).normalized();
-  o.radius = 0.5;
-  o.lower = V(-0.5, -0.4, dimension == 3 ? -0.3 : 0.0);
-  o.upper = V(0.6, 0.5, dimension == 3 ? 0.4 : 0.0);
-  if (moving) o.velocity = V(0.3, -0.2, dimension == 3 ? 0.1 : 0.0);
+  s.shape = shape;
+  s.point = V(0.1, -0.2, dimension == 3 ? 0.3 : 0.0);
+  const V normal = V(0.3, 0.9, dimension == 3 ? 0.2 : 0.0).normalized();
+  s.radius = 0.5;
+  s.lower = V(-0.5, -0.4, dimension == 3 ? -0.3 : 0.0);
+  s.upper = V(0.6, 0.5, dimension == 3 ? 0.4 : 0.0);
+  const V velocity = moving ? V(0.3, -0.2, dimension == 3 ? 0.1 : 0.0) : V::Zero();
+  switch (shape) {
+    case Shape::kPlane:
+      s.obstacle = std::make_shared<PlaneObstacle>(dimension, s.point, normal, velocity);
+      break;
+    case Shape::kSphere:
+      s.obstacle = std::make_shared<SphereObstacle>(dimension, s.point, s.radius, velocity);
+      break;
+    case Shape::kBox:
+      s.obstacle = std::make_shared<BoxObstacle>(dimension, s.lower, s.upper, velocity);
+      break;
+  }
   s.t = moving ? 0.7 : 0.0;
-  s.name = std::string(ObstacleTypeName(type)) + " " + std::to_string(dimension) + "D" +
+  s.name = std::string(s.obstacle->type_name()) + " " + std::to_string(dimension) + "D" +
            (moving ? " moving" : " static");
   return s;
 }
 
-std::vector<Scenario> Scenarios(ObstacleType type, std::initializer_list<int> dimensions) {
+std::vector<Scenario> Scenarios(Shape type, std::initializer_list<int> dimensions) {
   std::vector<Scenario> all;
   for (int dimension : dimensions) {
     for (bool moving : {false, true}) all.push_back(MakeScenario(type, dimension, moving));
@@ -178,12 +196,12 @@ std::vector<Scenario> Scenarios(ObstacleType type, std::initializer_list<int> di
 
 TEST(DistanceHessian, PointPlaneIsZero) {
   Random random(1);
-  for (const Scenario& s : Scenarios(ObstacleType::kPlane, {2, 3})) {
-    const int dim = s.obstacle.dimension;
+  for (const Scenario& s : Scenarios(Shape::kPlane, {2, 3})) {
+    const int dim = s.obstacle->dimension();
     for (int trial = 0; trial < kTrials; ++trial) {
-      const V x = s.obstacle.point + s.obstacle.velocity * s.t + 2.0 * random.Direction(dim);
+      const V x = s.point + s.obstacle->velocity() * s.t + 2.0 * random.Direction(dim);
       Eigen::Matrix3d h;
-      ASSERT_TRUE(ObstacleDistanceHessian(s.obstacle, x, s.t, &h));
+      ASSERT_TRUE(ObstacleDistanceHessian(*s.obstacle, x, s.t, &h));
       const Gradient gradient = PointDistanceGradient(s);
       ExpectHessian(h.topLeftCorner(dim, dim), gradient, Stack({x}, dim), true, s.name);
     }
@@ -192,13 +210,13 @@ TEST(DistanceHessian, PointPlaneIsZero) {
 
 TEST(DistanceHessian, PointSphere) {
   Random random(2);
-  for (const Scenario& s : Scenarios(ObstacleType::kSphere, {2, 3})) {
-    const int dim = s.obstacle.dimension;
+  for (const Scenario& s : Scenarios(Shape::kSphere, {2, 3})) {
+    const int dim = s.obstacle->dimension();
     for (int trial = 0; trial < kTrials; ++trial) {
-      const V centre = s.obstacle.point + s.obstacle.velocity * s.t;
+      const V centre = s.point + s.obstacle->velocity() * s.t;
       const V x = centre + random.Uniform(0.7, 1.5) * random.Direction(dim);
       Eigen::Matrix3d h;
-      ASSERT_TRUE(ObstacleDistanceHessian(s.obstacle, x, s.t, &h));
+      ASSERT_TRUE(ObstacleDistanceHessian(*s.obstacle, x, s.t, &h));
       const Gradient gradient = PointDistanceGradient(s);
       ExpectHessian(h.topLeftCorner(dim, dim), gradient, Stack({x}, dim), false, s.name);
     }
@@ -208,23 +226,23 @@ TEST(DistanceHessian, PointSphere) {
 // A point outside the box by [0.2, 0.2 + span] in the axes set in `outside`
 // (the others within the slab, 0.1 from its faces at least).
 V PointNearBox(const Scenario& s, const bool outside[3], double span, Random* random) {
-  const Obstacle& o = s.obstacle;
+  const Obstacle& o = *s.obstacle;
   V x = V::Zero();
-  for (int k = 0; k < o.dimension; ++k) {
+  for (int k = 0; k < o.dimension(); ++k) {
     if (outside[k]) {
-      x[k] = random->Index(2) ? o.upper[k] + random->Uniform(0.2, 0.2 + span)
-                              : o.lower[k] - random->Uniform(0.2, 0.2 + span);
+      x[k] = random->Index(2) ? s.upper[k] + random->Uniform(0.2, 0.2 + span)
+                              : s.lower[k] - random->Uniform(0.2, 0.2 + span);
     } else {
-      x[k] = random->Uniform(o.lower[k] + 0.1, o.upper[k] - 0.1);
+      x[k] = random->Uniform(s.lower[k] + 0.1, s.upper[k] - 0.1);
     }
   }
-  return x + o.velocity * s.t;
+  return x + o.velocity() * s.t;
 }
 
 TEST(DistanceHessian, PointBoxFaceEdgeCorner) {
   Random random(3);
-  for (const Scenario& s : Scenarios(ObstacleType::kBox, {2, 3})) {
-    const int dim = s.obstacle.dimension;
+  for (const Scenario& s : Scenarios(Shape::kBox, {2, 3})) {
+    const int dim = s.obstacle->dimension();
     // Number of axes outside the slab: 0 inside, 1 face (2D: side), 2 edge
     // (2D: corner), 3 corner.
     for (int count = 0; count <= dim; ++count) {
@@ -239,7 +257,7 @@ TEST(DistanceHessian, PointBoxFaceEdgeCorner) {
         }
         const V x = PointNearBox(s, outside, 0.6, &random);
         Eigen::Matrix3d h;
-        ASSERT_TRUE(ObstacleDistanceHessian(s.obstacle, x, s.t, &h));
+        ASSERT_TRUE(ObstacleDistanceHessian(*s.obstacle, x, s.t, &h));
         const Gradient gradient = PointDistanceGradient(s);
         // The distance is affine inside and in the face (side) regions.
         ExpectHessian(h.topLeftCorner(dim, dim), gradient, Stack({x}, dim), count <= 1,
@@ -278,16 +296,16 @@ void SegmentNearPoint(const V& c, int dim, int region, double low, double span, 
 }
 
 std::vector<Scenario> EdgeScenarios() {
-  std::vector<Scenario> all = Scenarios(ObstacleType::kSphere, {2, 3});
-  for (const Scenario& s : Scenarios(ObstacleType::kBox, {2})) all.push_back(s);
+  std::vector<Scenario> all = Scenarios(Shape::kSphere, {2, 3});
+  for (const Scenario& s : Scenarios(Shape::kBox, {2})) all.push_back(s);
   return all;
 }
 
 TEST(DistanceHessian, SegmentPointFeatureEndsAndInterior) {
   Random random(4);
   for (const Scenario& s : EdgeScenarios()) {
-    const Obstacle& o = s.obstacle;
-    const int dim = o.dimension;
+    const Obstacle& o = *s.obstacle;
+    const int dim = o.dimension();
     for (int feature = 0; feature < o.NumEdgeFeatures(); ++feature) {
       const V c = o.EdgeFeature(feature, s.t);
       for (int region = 0; region < 3; ++region) {
@@ -315,8 +333,8 @@ TEST(DistanceHessian, SegmentPointFeatureEndsAndInterior) {
 TEST(DistanceHessian, SegmentFixedPoint) {
   Random random(5);
   for (const Scenario& s : EdgeScenarios()) {
-    const Obstacle& o = s.obstacle;
-    const int dim = o.dimension;
+    const Obstacle& o = *s.obstacle;
+    const int dim = o.dimension();
     for (int feature = 0; feature < o.NumEdgeFeatures(); ++feature) {
       const V c = o.EdgeFeature(feature, s.t);
       for (int trial = 0; trial < kTrials; ++trial) {
@@ -393,15 +411,15 @@ int TriangleRegion(const V& w) {
 }
 
 std::vector<Scenario> FaceScenarios() {
-  std::vector<Scenario> all = Scenarios(ObstacleType::kSphere, {3});
-  for (const Scenario& s : Scenarios(ObstacleType::kBox, {3})) all.push_back(s);
+  std::vector<Scenario> all = Scenarios(Shape::kSphere, {3});
+  for (const Scenario& s : Scenarios(Shape::kBox, {3})) all.push_back(s);
   return all;
 }
 
 TEST(DistanceHessian, TrianglePointFeatureVertexEdgeInterior) {
   Random random(6);
   for (const Scenario& s : FaceScenarios()) {
-    const Obstacle& o = s.obstacle;
+    const Obstacle& o = *s.obstacle;
     for (int feature = 0; feature < o.NumFaceFeatures(); ++feature) {
       const V p = o.FaceFeature(feature, s.t);
       for (int region = 0; region < 7; ++region) {
@@ -428,7 +446,7 @@ TEST(DistanceHessian, TrianglePointFeatureVertexEdgeInterior) {
 TEST(DistanceHessian, TriangleFixedWeights) {
   Random random(7);
   for (const Scenario& s : FaceScenarios()) {
-    const Obstacle& o = s.obstacle;
+    const Obstacle& o = *s.obstacle;
     for (int feature = 0; feature < o.NumFaceFeatures(); ++feature) {
       const V p = o.FaceFeature(feature, s.t);
       for (int trial = 0; trial < kTrials; ++trial) {
@@ -486,8 +504,8 @@ void SegmentNearSegment(const V& p, const V& q, bool s_free, bool t_free, double
 
 TEST(DistanceHessian, SegmentBoxEdgeFreeAndBoundParameters) {
   Random random(8);
-  for (const Scenario& s : Scenarios(ObstacleType::kBox, {3})) {
-    const Obstacle& o = s.obstacle;
+  for (const Scenario& s : Scenarios(Shape::kBox, {3})) {
+    const Obstacle& o = *s.obstacle;
     for (int edge = 0; edge < o.NumBoxEdges(); ++edge) {
       V p, q;
       o.BoxEdge(edge, s.t, &p, &q);
@@ -607,21 +625,22 @@ constexpr double kMinDistance = 1e-9;
 
 TEST(GapCurvature, PointObstacleGapMatchesDifferences) {
   Random random(10);
-  std::vector<Scenario> all = Scenarios(ObstacleType::kSphere, {2, 3});
-  for (const Scenario& s : Scenarios(ObstacleType::kBox, {2, 3})) all.push_back(s);
+  std::vector<Scenario> all = Scenarios(Shape::kSphere, {2, 3});
+  for (const Scenario& s : Scenarios(Shape::kBox, {2, 3})) all.push_back(s);
   for (const Scenario& s : all) {
-    const int dim = s.obstacle.dimension;
+    const int dim = s.obstacle->dimension();
     for (int trial = 0; trial < 5; ++trial) {
       V x;
-      if (s.obstacle.type == ObstacleType::kSphere) {
-        x = s.obstacle.point + s.obstacle.velocity * s.t +
+      if (s.shape == Shape::kSphere) {
+        x = s.point + s.obstacle->velocity() * s.t +
             random.Uniform(0.7, 1.2) * random.Direction(dim);
       } else {
         // Corner regions (2D and 3D) and a 3D edge region.
         const bool outside[3] = {true, true, trial % 2 == 0};
         x = PointNearBox(s, outside, 0.1, &random);
       }
-      auto gap = std::make_unique<PointObstacleGap>(dim, &s.obstacle, &s.t, kDHat, kMinDistance);
+      auto gap =
+          std::make_unique<PointObstacleGap>(dim, s.obstacle.get(), &s.t, kDHat, kMinDistance);
       const ResidualCurvature curvature = GapCurvature(gap.get());
       ExpectTermCurvature(std::move(gap), curvature, {x}, dim, s.name);
     }
@@ -631,8 +650,8 @@ TEST(GapCurvature, PointObstacleGapMatchesDifferences) {
 TEST(GapCurvature, EdgeObstacleGapMatchesDifferences) {
   Random random(11);
   for (const Scenario& s : EdgeScenarios()) {
-    const Obstacle& o = s.obstacle;
-    const int dim = o.dimension;
+    const Obstacle& o = *s.obstacle;
+    const int dim = o.dimension();
     for (int feature = 0; feature < o.NumEdgeFeatures(); ++feature) {
       for (bool lagged : {false, true}) {
         for (int region = 0; region < 3; ++region) {
@@ -657,7 +676,7 @@ TEST(GapCurvature, EdgeObstacleGapMatchesDifferences) {
 TEST(GapCurvature, FaceObstacleGapMatchesDifferences) {
   Random random(12);
   for (const Scenario& s : FaceScenarios()) {
-    const Obstacle& o = s.obstacle;
+    const Obstacle& o = *s.obstacle;
     for (int feature = 0; feature < o.NumFaceFeatures(); ++feature) {
       for (bool lagged : {false, true}) {
         for (int region = 0; region < 7; ++region) {
@@ -682,14 +701,15 @@ TEST(GapCurvature, FaceObstacleGapMatchesDifferences) {
 
 TEST(GapCurvature, EdgeBoxEdgeGapMatchesDifferences) {
   Random random(13);
-  for (const Scenario& s : Scenarios(ObstacleType::kBox, {3})) {
-    for (int edge = 0; edge < s.obstacle.NumBoxEdges(); edge += 5) {
+  for (const Scenario& s : Scenarios(Shape::kBox, {3})) {
+    for (int edge = 0; edge < s.obstacle->NumBoxEdges(); edge += 5) {
       V p, q;
-      s.obstacle.BoxEdge(edge, s.t, &p, &q);
+      s.obstacle->BoxEdge(edge, s.t, &p, &q);
       for (int region = 0; region < 4; ++region) {
         V a, b;
         SegmentNearSegment(p, q, region & 1, region & 2, 0.4, &random, &a, &b);
-        auto gap = std::make_unique<EdgeBoxEdgeGap>(&s.obstacle, edge, &s.t, kDHat, kMinDistance);
+        auto gap =
+            std::make_unique<EdgeBoxEdgeGap>(s.obstacle.get(), edge, &s.t, kDHat, kMinDistance);
         const ResidualCurvature curvature = GapCurvature(gap.get());
         ExpectTermCurvature(std::move(gap), curvature, {a, b}, 3,
                             s.name + " region " + std::to_string(region));
@@ -718,14 +738,14 @@ TEST(GapCurvature, PointEdgeGapMatchesDifferences) {
 // of a sphere, Hess d = (I - n n^T) / (R + d), times -w rho' u (to round-off
 // of the gap, 1e-8 relative, and of the Gauss-Newton part it is taken from).
 TEST(GapCurvature, TinyGapKeepsTheCurvature) {
-  const Scenario s = MakeScenario(ObstacleType::kSphere, 3, true);
+  const Scenario s = MakeScenario(Shape::kSphere, 3, true);
   const double d_hat = 1e-3, gap = 1e-8, kappa = 1e4, weight = 2.0;
   const V n = V(1.0, -2.0, 0.5).normalized();
-  const V x = s.obstacle.point + s.obstacle.velocity * s.t + (s.obstacle.radius + gap) * n;
+  const V x = s.point + s.obstacle->velocity() * s.t + (s.radius + gap) * n;
   const double* parameters[1] = {x.data()};
   Term term;
   term.nodes = {0};
-  auto cost = std::make_unique<PointObstacleGap>(3, &s.obstacle, &s.t, d_hat, 0.0);
+  auto cost = std::make_unique<PointObstacleGap>(3, s.obstacle.get(), &s.t, d_hat, 0.0);
   const ResidualCurvature curvature = GapCurvature(cost.get());
   term.cost = std::move(cost);
   term.loss = std::make_unique<BarrierLoss>(d_hat, 1.0, &kappa);
@@ -741,9 +761,8 @@ TEST(GapCurvature, TinyGapKeepsTheCurvature) {
   const double u = d_hat - gap;
   double rho[3];
   BarrierLoss(d_hat, 1.0, &kappa).Evaluate(u * u, rho);
-  const Eigen::Matrix3d expected = -weight * rho[1] * u *
-                                   (Eigen::Matrix3d::Identity() - n * n.transpose()) /
-                                   (s.obstacle.radius + gap);
+  const Eigen::Matrix3d expected =
+      -weight * rho[1] * u * (Eigen::Matrix3d::Identity() - n * n.transpose()) / (s.radius + gap);
   const Eigen::MatrixXd part = analytic.hessian - gauss_newton.hessian;
   EXPECT_LE((part - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.cwiseAbs().maxCoeff())
       << part << "\n"
@@ -754,9 +773,9 @@ TEST(GapCurvature, TinyGapKeepsTheCurvature) {
 // Out of reach (d >= d_hat) the curvature is zero; inside the obstacle the
 // callback fails as the cost function does.
 TEST(GapCurvature, InactiveIsZeroAndInfeasibleFails) {
-  const Scenario s = MakeScenario(ObstacleType::kSphere, 3, true);
-  const PointObstacleGap gap(3, &s.obstacle, &s.t, kDHat, kMinDistance);
-  const V centre = s.obstacle.point + s.obstacle.velocity * s.t;
+  const Scenario s = MakeScenario(Shape::kSphere, 3, true);
+  const PointObstacleGap gap(3, s.obstacle.get(), &s.t, kDHat, kMinDistance);
+  const V centre = s.point + s.obstacle->velocity() * s.t;
   const double c = 0.7;
   double curvature[9];
   const V far = centre + V(2.0, 0.0, 0.0);

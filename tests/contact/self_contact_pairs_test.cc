@@ -36,7 +36,7 @@ V At(const std::vector<double>& x, int node) {
 struct TwoSheets {
   CollisionMesh mesh;
   std::vector<double> x;
-  std::vector<Obstacle> obstacles;
+  ObstacleList obstacles;
   std::vector<bool> free;
   double time = 0.0;
   double kappa = 5.0;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -13,6 +14,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "contact/obstacles/box_obstacle.h"
+#include "contact/obstacles/sphere_obstacle.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "io/frame_writer.h"
@@ -201,17 +204,10 @@ TEST(SurfaceTriangles, TwoPerCellWithoutOverlapsOrBendingChords) {
 }
 
 TEST(ObstacleMesh, SpheresBoxesAndPlanesAtTheirTime) {
-  ipstep::Obstacle sphere;
-  sphere.type = ipstep::ObstacleType::kSphere;
-  sphere.dimension = 3;
-  sphere.point = {0.1, 0.2, 0.3};
-  sphere.radius = 0.5;
-  sphere.velocity = {1.0, 0.0, 0.0};
-  ipstep::Obstacle box;
-  box.type = ipstep::ObstacleType::kBox;
-  box.dimension = 3;
-  box.lower = {0, 0, 0};
-  box.upper = {1, 2, 3};
+  const auto sphere = std::make_shared<ipstep::SphereObstacle>(3, Eigen::Vector3d(0.1, 0.2, 0.3),
+                                                               0.5, Eigen::Vector3d(1.0, 0.0, 0.0));
+  const auto box =
+      std::make_shared<ipstep::BoxObstacle>(3, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3));
   const ipstep::VtkMesh mesh = ipstep::ObstacleMesh({sphere, box}, 2.0, {0, 0, 0}, 1.0);
   const std::vector<int>& owner = mesh.cell_integers.at(0).second;
   ASSERT_EQ(owner.size(), mesh.cells.size());

@@ -16,6 +16,7 @@
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
 #include "contact/friction.h"
+#include "contact/obstacles/sphere_obstacle.h"
 #include "core/term_hessian.h"
 #include "energies/hookean_spring.h"
 #include "energies/quartic_spring.h"
@@ -211,10 +212,7 @@ TEST(TermHessian, AffineTermsKeepTheirExactGaussNewtonModel) {
 // one-sided halves with their loss) and 3D, and 2D edge friction (finite
 // differences of their Jacobians).
 TEST(TermHessian, ContactTermsMatchFiniteDifferencesOfTheGradient) {
-  Obstacle sphere;
-  sphere.type = ObstacleType::kSphere;
-  sphere.dimension = 3;
-  sphere.radius = 0.5;
+  const SphereObstacle sphere(3, Eigen::Vector3d::Zero(), 0.5);
   const double time = 0.0, kappa = 3e3;
   {
     Term term;

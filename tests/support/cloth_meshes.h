@@ -50,6 +50,7 @@ inline void AddClothGrid(int nx, int ny, double a, int first_node,
     mesh->edges.push_back(e);
     mesh->edge_weights.push_back(0.5 * a * a);
   }
+  IndexNodeSlots(mesh);
 }
 
 // An n x n cloth of spacing a folded in half over the line i = n/2: the

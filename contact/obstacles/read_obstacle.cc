@@ -1,0 +1,70 @@
+#include "contact/obstacles/read_obstacle.h"
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "contact/obstacles/box_obstacle.h"
+#include "contact/obstacles/plane_obstacle.h"
+#include "contact/obstacles/sphere_obstacle.h"
+#include "core/input_error.h"
+#include "core/input_limits.h"
+
+namespace ipstep {
+
+namespace {
+
+// Read after the shape's own keys (the order in which errors are found).
+Eigen::Vector3d ReadVelocity(const JsonNode& p, int dimension) {
+  if (!p.Has("velocity")) return Eigen::Vector3d::Zero();
+  return p.Get("velocity").Vector3(dimension, limits::kMaxSpeed, "m/s");
+}
+
+ObstaclePtr ReadPlane(const JsonNode& p, int dimension) {
+  p.ExpectObject({"type", "point", "normal", "velocity"});
+  const Eigen::Vector3d point = p.Get("point").Vector3(dimension, limits::kMaxCoordinate, "m");
+  const Eigen::Vector3d normal =
+      p.Get("normal").Vector3(dimension, std::numeric_limits<double>::max(), "");
+  // stableNorm: |normal|^2 must not overflow (normal [1e300, 1e300]) or underflow.
+  const double length = normal.stableNorm();
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    p.Get("normal").Fail("must not be the zero vector");
+  }
+  return std::make_shared<PlaneObstacle>(dimension, point, normal / length,
+                                         ReadVelocity(p, dimension), p.path());
+}
+
+ObstaclePtr ReadSphere(const JsonNode& p, int dimension) {
+  p.ExpectObject({"type", "center", "radius", "velocity"});
+  const Eigen::Vector3d center = p.Get("center").Vector3(dimension, limits::kMaxCoordinate, "m");
+  const double radius = p.Get("radius").InRange(limits::kMinLength, limits::kMaxCoordinate, "m");
+  return std::make_shared<SphereObstacle>(dimension, center, radius, ReadVelocity(p, dimension),
+                                          p.path());
+}
+
+ObstaclePtr ReadBox(const JsonNode& p, int dimension) {
+  p.ExpectObject({"type", "min", "max", "velocity"});
+  const Eigen::Vector3d lower = p.Get("min").Vector3(dimension, limits::kMaxCoordinate, "m");
+  const Eigen::Vector3d upper = p.Get("max").Vector3(dimension, limits::kMaxCoordinate, "m");
+  for (int k = 0; k < dimension; ++k) {
+    if (!(upper[k] > lower[k]))
+      p.Get("max").Fail("must be greater than \"min\" in every component");
+  }
+  return std::make_shared<BoxObstacle>(dimension, lower, upper, ReadVelocity(p, dimension),
+                                       p.path());
+}
+
+}  // namespace
+
+ObstaclePtr ReadObstacle(const JsonNode& p, int dimension) {
+  if (!p.Has("type")) p.Get("type");  // throws "required key is missing"
+  const std::string type = p.Get("type").String();
+  if (type == "plane") return ReadPlane(p, dimension);
+  if (type == "sphere" || type == "circle") return ReadSphere(p, dimension);
+  if (type == "box") return ReadBox(p, dimension);
+  p.Get("type").Fail("unknown obstacle type \"" + ClipInput(type) +
+                     "\" (known: plane, sphere, circle, box)");
+}
+
+}  // namespace ipstep
