@@ -26,15 +26,17 @@ namespace ipstep {
 
 class FrameWriter {
  public:
-  // Creates DIR if needed. Throws InputError naming `flag` if it cannot.
+  // Creates DIR if needed. Throws InputError "output: <output>: ..." if it
+  // cannot, or cannot write a file there (`output`: the caller's name for the
+  // series).
   FrameWriter(const std::string& directory, const Simulation& sim,
-              const std::string& flag = "--frames");
+              const std::string& output = "frames");
   // Writes the simulation's current state as frame `frame` (e.g. the step).
   void Write(int frame);
 
  private:
   std::string directory_;
-  std::string flag_;
+  std::string output_;
   const Simulation& sim_;
   std::unique_ptr<PvdSeries> series_;  // DIR/run.pvd
   std::vector<std::array<int, 3>> triangles_;

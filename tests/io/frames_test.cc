@@ -1,9 +1,11 @@
 // --frames: the ParaView time series (io/frame_writer.h). The .pvd lists every
 // frame at its simulated time; each .vtu holds the scene's nodes, springs and
 // triangles; obstacles are drawn where they are at that time.
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -17,6 +19,8 @@
 #include "energies/effect_registry.h"
 #include "io/frame_writer.h"
 #include "io/obstacle_mesh.h"
+#include "io/positions_writer.h"
+#include "io/stats_writer.h"
 #include "io/surface_triangles.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
@@ -238,8 +242,31 @@ TEST_F(Frames, UnwritableDirectoryIsAnInputError) {
     ipstep::FrameWriter frames((dir_ / "file" / "frames").string(), sim);
     FAIL() << "no error";
   } catch (const ipstep::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--frames"), std::string::npos) << e.what();
+    // The library names the output as its caller did (default "frames"), not a flag.
+    EXPECT_EQ(std::string(e.what()).rfind("output: frames: cannot create directory '", 0), 0u)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
   }
+}
+
+// The CSV writers name the output as their caller does, with the path.
+TEST_F(Frames, UnwritableFilesNameTheOutput) {
+  const ipstep::Scene scene = Load("oscillator");
+  ipstep::Simulation sim(scene, {});
+  const std::string path = (dir_ / "missing" / "x.csv").string();
+  const auto expect_error = [&path](const std::function<void()>& write, const std::string& name) {
+    try {
+      write();
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const ipstep::InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "output: " + name + ": cannot write '" + path + "'");
+    }
+  };
+  expect_error([&] { ipstep::StatsWriter writer(path, "stats"); }, "stats");
+  expect_error([&] { ipstep::IterationLogWriter writer(path, "iterations_log"); },
+               "iterations_log");
+  expect_error([&] { ipstep::WritePositionsCsv(sim.state(), path, "final positions"); },
+               "final positions");
 }
 
 }  // namespace
