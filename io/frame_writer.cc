@@ -20,8 +20,9 @@ Eigen::Vector3d NodePosition(const Eigen::VectorXd& x, int dimension, int node) 
   return p;
 }
 
-// The triangles drawn: a 2D solid's elements, a 3D solid's boundary (its
-// declared surface), otherwise the triangles filling the spring network.
+// The triangles drawn: a 2D solid's elements, otherwise the declared surface
+// (a 3D solid's boundary, a 3D cloth's faces) or the triangles filling the
+// spring network (io/surface_triangles.h).
 std::vector<std::array<int, 3>> PictureTriangles(const Scene& scene) {
   if (scene.solid && scene.dimension == 2) {
     std::vector<std::array<int, 3>> triangles;
@@ -30,7 +31,6 @@ std::vector<std::array<int, 3>> PictureTriangles(const Scene& scene) {
     }
     return triangles;
   }
-  if (scene.solid) return scene.surface.triangles;
   return SurfaceTriangles(scene);
 }
 

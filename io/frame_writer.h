@@ -1,8 +1,9 @@
 // --frames=DIR: a ParaView time series of a run. DIR/run.pvd lists, for each
 // frame at its simulated time (the `timestep`, so ParaView's time slider shows
-// seconds), the body DIR/frame_NNNNN.vtu (points, springs as lines, the
-// triangles filling the spring network as triangles (io/surface_triangles.h)
-// or an elastic solid's triangles (2D) / boundary triangles (3D), particles
+// seconds), the body DIR/frame_NNNNN.vtu (points, springs as lines, as
+// triangles the surface triangles the scene declares (a 3D cloth's faces, a 3D
+// elastic solid's boundary), else those filling the spring network
+// (io/surface_triangles.h), or a 2D elastic solid's triangles, particles
 // as vertices; point data "velocity" and, with contact,
 // "contact_force": minus the gradient of the barrier energy, the force the
 // contact terms exert on each node [N]) as part 0 and, for scenes with
