@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -306,6 +307,19 @@ TEST_F(ProgramInput, BenchFlagsFollowTheContract) {
     EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
   }
   EXPECT_NE(run("--helpshort").output.find("repeats"), std::string::npos);
+  // An item the library rejects names the list flag ipstep_bench has, and the item.
+  for (const auto& [arguments, start] : std::vector<std::pair<std::string, std::string>>{
+           {"--optimizers=newton+sparse=MKL",
+            "ipstep_bench: error: flag: --optimizers: 'newton+sparse=MKL': unknown sparse library "
+            "'MKL'"},
+           {"--optimizers=adam",
+            "ipstep_bench: error: flag: --optimizers: 'adam': unknown optimizer"},
+           {"--integrators=rk4",
+            "ipstep_bench: error: flag: --integrators: 'rk4': unknown integrator 'rk4'"}}) {
+    const Outcome o = run(arguments + " --dry_run --output=" + (dir_ / "out.csv").string());
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind(start, 0), 0u) << arguments << "\n" << o.output;
+  }
   // A run that blows up is "diverged" in the CSV, with no drift or error value.
   const std::string csv = (dir_ / "diverged.csv").string();
   const Outcome blown =
