@@ -77,10 +77,11 @@ RunResult RunOnce(const Scene& scene, SimulationOptions options) {
 }
 
 // The names of a list flag (--integrators, --optimizers), each checked by
-// `check` (which throws InputError naming the singular flag); an unknown name
-// is an error naming `flag`, with a near miss among `known` suggested.
-std::vector<std::string> CheckedList(const char* flag, const std::string& text, const char* what,
-                                     const std::string& known,
+// `check`; an InputError naming `option` (the library's name of the item,
+// apps/flag_names.h) is an unknown name: an error naming `flag`, with a near
+// miss among `known` suggested. Other errors (another option's value) pass.
+std::vector<std::string> CheckedList(const char* flag, const char* option, const std::string& text,
+                                     const char* what, const std::string& known,
                                      const std::function<void(const std::string&)>& check) {
   const std::vector<std::string> names = SplitList(text);
   if (names.empty())
@@ -93,7 +94,8 @@ std::vector<std::string> CheckedList(const char* flag, const std::string& text, 
   for (const std::string& name : names) {
     try {
       check(name);
-    } catch (const InputError&) {
+    } catch (const InputError& error) {
+      if (std::string(error.what()).rfind(std::string(option) + ": ", 0) != 0) throw;
       const std::string near = NearMiss(name, candidates);
       throw InputError("flag", std::string("--") + flag,
                        "unknown " + std::string(what) + " '" + ClipInput(name) + "'" +
@@ -117,15 +119,17 @@ int Run(const EffectRegistry& registry) {
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
   CheckContactFlagsApply(scene);
   const std::vector<std::string> integrators =
-      CheckedList("integrators", FLAGS_integrators, "integrator", IntegratorNames(),
-                  [&base](const std::string& name) {
+      CheckedList("integrators", "options: IntegratorOptions.name", FLAGS_integrators, "integrator",
+                  IntegratorNames(), [&base](const std::string& name) {
                     IntegratorOptions check = base.integrator;
                     check.name = name;
-                    if (!MakeIntegrator(check)) throw InputError("no integrator " + name);
+                    if (!MakeIntegrator(check)) {
+                      throw InputError("options", "IntegratorOptions.name", "no integrator");
+                    }
                   });
-  const std::vector<std::string> optimizers =
-      CheckedList("optimizers", FLAGS_optimizers, "optimizer", OptimizerNames(),
-                  [](const std::string& name) { ParseOptimizer(name); });
+  const std::vector<std::string> optimizers = CheckedList(
+      "optimizers", "options: OptimizerOptions.optimizer", FLAGS_optimizers, "optimizer",
+      OptimizerNames(), [](const std::string& name) { ParseOptimizer(name); });
 
   const double dt = base.time_step > 0.0 ? base.time_step : scene.time_step;
   const int steps = base.steps >= 0 ? base.steps : scene.steps;

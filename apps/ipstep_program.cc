@@ -59,10 +59,10 @@ int Run(const EffectRegistry& registry) {
   std::unique_ptr<IterationLogWriter> iterations;
   std::unique_ptr<FrameWriter> frames;
   if (!FLAGS_stats.empty()) {
-    stats = std::make_unique<StatsWriter>(FLAGS_stats, "--stats", sim.DiagnosticNames());
+    stats = std::make_unique<StatsWriter>(FLAGS_stats, "stats", sim.DiagnosticNames());
   }
   if (!FLAGS_iterations_log.empty()) {
-    iterations = std::make_unique<IterationLogWriter>(FLAGS_iterations_log, "--iterations_log");
+    iterations = std::make_unique<IterationLogWriter>(FLAGS_iterations_log, "iterations_log");
     sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });
   }
   if (!FLAGS_frames.empty()) {
@@ -113,8 +113,7 @@ int Run(const EffectRegistry& registry) {
       progress_shown = false;
       if (FLAGS_on_failure == "stop") {
         std::fprintf(stderr, "stopping (--on_failure=stop)\n");
-        if (!FLAGS_positions.empty())
-          WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
+        if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "positions");
         return kStepFailureExitCode;
       }
     }
@@ -128,7 +127,7 @@ int Run(const EffectRegistry& registry) {
     }
   }
   if (progress_shown) std::fprintf(stderr, "\n");
-  if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "--positions");
+  if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "positions");
   const EnergyReport e1 = sim.Energies();
   const int n = std::max(1, sim.steps());
   std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step\n",

@@ -10,6 +10,7 @@
 #include <glog/logging.h>
 
 #include "apps/command_line.h"
+#include "apps/flag_names.h"
 #include "apps/program_help.h"
 #include "core/input_error.h"
 #include "solver/allocator_tuning.h"
@@ -72,7 +73,10 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
     }
     return run();
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s: error: %s%s\n", program, e.what(), OriginNote(e.what()).c_str());
+    // The library names options, the programs name flags (apps/flag_names.h).
+    const std::string message = WithFlagNames(e.what());
+    std::fprintf(stderr, "%s: error: %s%s\n", program, message.c_str(),
+                 OriginNote(message).c_str());
     return kInputErrorExitCode;
   } catch (const std::exception& e) {
     // Not an input error: a bug. Still one line and an exit code, not an abort.

@@ -11,7 +11,8 @@ namespace ipstep {
 // -v=1 logs every step, -v=2 every optimizer iteration, and both show the
 // warnings (so does an explicit --minloglevel=0). Returns run()'s exit code, or kInputErrorExitCode
 // after printing
-// "<program>: error: <message>" for an InputError (1 and "internal error" for any
+// "<program>: error: <message>" for an InputError, an option the library names
+// printed as its flag (apps/flag_names.h) (1 and "internal error" for any
 // other exception).
 // --help and its variants print and return 0 (gflags would exit with 1;
 // apps/program_help.h).

@@ -85,6 +85,24 @@ namespace ipstep {
 namespace bench {
 namespace {
 
+// An item of a list flag (--integrators, --optimizers) that the library
+// rejects: the library names its option ("options: OptimizerOptions.
+// sparse_library: ...", apps/flag_names.h), which ipstep_bench has no flag
+// for, so the error names the list flag and the item.
+template <class Check>
+auto CheckedItem(const char* flag, const std::string& item, const Check& check) {
+  try {
+    return check();
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    const std::string prefix = "options: ";
+    const size_t name_end = message.find(": ", prefix.size());
+    if (message.rfind(prefix, 0) != 0 || name_end == std::string::npos) throw;
+    throw InputError("flag", std::string("--") + flag,
+                     "'" + ClipInput(item) + "': " + message.substr(name_end + 2));
+  }
+}
+
 // Runs and warm-up runs per configuration: each is a whole trajectory.
 constexpr int kMaxRepeats = 1000;
 
@@ -225,9 +243,16 @@ int Run(const EffectRegistry& registry) {
     throw InputError("flag", "--scenes/--integrators/--optimizers/--tolerances/--grid_sizes",
                      "lists must not be empty");
   }
-  for (const std::string& integrator : integrators) MakeIntegrator({integrator, 0.25, 0.5});
+  for (const std::string& integrator : integrators) {
+    CheckedItem("integrators", integrator, [&integrator] {
+      MakeIntegrator({integrator, 0.25, 0.5});
+    });
+  }
   std::map<std::string, OptimizerSpec> specs;
-  for (const std::string& text : optimizers) specs.emplace(text, ParseOptimizerSpec(text, 1e-6));
+  for (const std::string& text : optimizers) {
+    specs.emplace(
+        text, CheckedItem("optimizers", text, [&text] { return ParseOptimizerSpec(text, 1e-6); }));
+  }
   specs.emplace("none", ParseOptimizerSpec("none", 1e-6));
 
   // Scenes, their grid sizes, end time and time steps.

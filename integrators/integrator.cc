@@ -36,21 +36,21 @@ std::unique_ptr<Integrator> MakeIntegrator(const IntegratorOptions& o) {
   if (o.name == "newmark") {
     // The ranges and why: integrators/newmark.h.
     if (!(o.newmark_beta >= Newmark::kMinBeta && o.newmark_beta <= Newmark::kMaxBeta)) {
-      throw InputError("flag", "--newmark_beta",
+      throw InputError("options", "IntegratorOptions.newmark_beta",
                        "must be in [1e-3, 1], got " + FormatParameter(o.newmark_beta) +
                            " (beta -> 0 is the explicit central-difference scheme: the step "
                            "solves for beta h^2 times the acceleration, which round-off swamps; "
-                           "use --integrator=symplectic_euler for an explicit method)");
+                           "use the integrator symplectic_euler for an explicit method)");
     }
     if (!(o.newmark_gamma >= Newmark::kMinGamma && o.newmark_gamma <= Newmark::kMaxGamma)) {
-      throw InputError("flag", "--newmark_gamma",
+      throw InputError("options", "IntegratorOptions.newmark_gamma",
                        "must be in [0.5, 1], got " + FormatParameter(o.newmark_gamma) +
                            " (gamma < 1/2 amplifies every oscillation at every step size; 1/2 "
                            "is the trapezoidal rule, larger values dissipate)");
     }
     return std::make_unique<Newmark>(o.newmark_beta, o.newmark_gamma);
   }
-  throw InputError("flag", "--integrator",
+  throw InputError("options", "IntegratorOptions.name",
                    "unknown integrator '" + o.name + "' (choose one of " + IntegratorNames() + ")");
 }
 

@@ -66,7 +66,8 @@ struct IntegratorOptions {
   double newmark_gamma = 0.5;
 };
 
-// Throws InputError (naming --integrator / --newmark_beta / --newmark_gamma).
+// Throws InputError naming the option (IntegratorOptions.name, .newmark_beta,
+// .newmark_gamma).
 std::unique_ptr<Integrator> MakeIntegrator(const IntegratorOptions& options);
 const char* IntegratorNames();  // "backward_euler, newmark, quasi_static, symplectic_euler"
 

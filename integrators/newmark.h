@@ -9,7 +9,7 @@
 // order, energy-conserving on linear problems, period elongated by
 // Omega / (2 atan(Omega/2)); gamma > 1/2 adds numerical dissipation.
 //
-// Parameter ranges (MakeIntegrator rejects anything else, naming the flags):
+// Parameter ranges (MakeIntegrator rejects anything else, naming the option):
 //  * beta in [1e-3, 1]. beta = 0 is the explicit central-difference scheme,
 //    which is not a minimisation; as beta -> 0 the step solves for
 //    x - x_hat = beta h^2 a_{n+1} and recovers a_{n+1} by dividing by beta h^2,

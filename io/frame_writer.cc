@@ -20,8 +20,9 @@ Eigen::Vector3d NodePosition(const Eigen::VectorXd& x, int dimension, int node) 
   return p;
 }
 
-// The triangles drawn: a 2D solid's elements, a 3D solid's boundary (its
-// declared surface), otherwise the triangles filling the spring network.
+// The triangles drawn: a 2D solid's elements, otherwise the declared surface
+// (a 3D solid's boundary, a 3D cloth's faces) or the triangles filling the
+// spring network (io/surface_triangles.h).
 std::vector<std::array<int, 3>> PictureTriangles(const Scene& scene) {
   if (scene.solid && scene.dimension == 2) {
     std::vector<std::array<int, 3>> triangles;
@@ -30,7 +31,6 @@ std::vector<std::array<int, 3>> PictureTriangles(const Scene& scene) {
     }
     return triangles;
   }
-  if (scene.solid) return scene.surface.triangles;
   return SurfaceTriangles(scene);
 }
 
@@ -43,15 +43,15 @@ std::string Numbered(const char* stem, int frame) {
 }  // namespace
 
 FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
-                         const std::string& flag)
-    : directory_(directory), flag_(flag), sim_(sim) {
+                         const std::string& output)
+    : directory_(directory), output_(output), sim_(sim) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
-    throw InputError("flag", flag, "cannot create directory '" + directory + "'");
+    throw InputError("output", output, "cannot create directory '" + directory + "'");
   }
   series_ =
-      std::make_unique<PvdSeries>((std::filesystem::path(directory) / "run.pvd").string(), flag);
+      std::make_unique<PvdSeries>((std::filesystem::path(directory) / "run.pvd").string(), output);
   const Scene& scene = sim.scene();
   triangles_ = PictureTriangles(scene);
   std::vector<bool> has_spring(scene.num_nodes(), scene.solid != nullptr);
@@ -119,14 +119,14 @@ void FrameWriter::Write(int frame) {
   }
   body.cell_integers.push_back({"kind", kind});
   const std::string body_file = Numbered("frame", frame);
-  WriteVtu(body, (std::filesystem::path(directory_) / body_file).string(), flag_);
+  WriteVtu(body, (std::filesystem::path(directory_) / body_file).string(), output_);
   series_->Add(s.time, 0, body_file);
   if (obstacles_.empty()) return;
   std::string obstacle_file = "obstacles.vtu";
   if (obstacles_move_) obstacle_file = Numbered("obstacles", frame);
   if (obstacles_move_ || !static_obstacles_written_) {
     WriteVtu(ObstacleMesh(obstacles_, s.time, centre_, extent_),
-             (std::filesystem::path(directory_) / obstacle_file).string(), flag_);
+             (std::filesystem::path(directory_) / obstacle_file).string(), output_);
     static_obstacles_written_ = true;
   }
   series_->Add(s.time, 1, obstacle_file);

@@ -1,8 +1,9 @@
 // --frames=DIR: a ParaView time series of a run. DIR/run.pvd lists, for each
 // frame at its simulated time (the `timestep`, so ParaView's time slider shows
-// seconds), the body DIR/frame_NNNNN.vtu (points, springs as lines, the
-// triangles filling the spring network as triangles (io/surface_triangles.h)
-// or an elastic solid's triangles (2D) / boundary triangles (3D), particles
+// seconds), the body DIR/frame_NNNNN.vtu (points, springs as lines, as
+// triangles the surface triangles the scene declares (a 3D cloth's faces, a 3D
+// elastic solid's boundary), else those filling the spring network
+// (io/surface_triangles.h), or a 2D elastic solid's triangles, particles
 // as vertices; point data "velocity" and, with contact,
 // "contact_force": minus the gradient of the barrier energy, the force the
 // contact terms exert on each node [N]) as part 0 and, for scenes with
@@ -26,15 +27,17 @@ namespace ipstep {
 
 class FrameWriter {
  public:
-  // Creates DIR if needed. Throws InputError naming `flag` if it cannot.
+  // Creates DIR if needed. Throws InputError "output: <output>: ..." if it
+  // cannot, or cannot write a file there (`output`: the caller's name for the
+  // series).
   FrameWriter(const std::string& directory, const Simulation& sim,
-              const std::string& flag = "--frames");
+              const std::string& output = "frames");
   // Writes the simulation's current state as frame `frame` (e.g. the step).
   void Write(int frame);
 
  private:
   std::string directory_;
-  std::string flag_;
+  std::string output_;
   const Simulation& sim_;
   std::unique_ptr<PvdSeries> series_;  // DIR/run.pvd
   std::vector<std::array<int, 3>> triangles_;

@@ -7,9 +7,9 @@
 
 namespace ipstep {
 
-void WritePositionsCsv(const State& s, const std::string& path, const std::string& flag) {
+void WritePositionsCsv(const State& s, const std::string& path, const std::string& output) {
   std::ofstream out(path);
-  if (!out) throw InputError("flag", flag, "cannot write '" + path + "'");
+  if (!out) throw InputError("output", output, "cannot write '" + path + "'");
   out << std::setprecision(17) << (s.dimension == 2 ? "node,x,y\n" : "node,x,y,z\n");
   for (int i = 0; i < s.num_nodes(); ++i) {
     out << i;

@@ -7,7 +7,8 @@
 
 namespace ipstep {
 
-// Throws InputError naming `flag` if the file cannot be written.
-void WritePositionsCsv(const State& state, const std::string& path, const std::string& flag);
+// Throws InputError "output: <output>: cannot write '<path>'" if the file cannot
+// be written (`output`: the caller's name for it, e.g. "positions").
+void WritePositionsCsv(const State& state, const std::string& path, const std::string& output);
 
 }  // namespace ipstep

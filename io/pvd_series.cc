@@ -25,9 +25,9 @@ std::string XmlAttribute(const std::string& text) {
 
 }  // namespace
 
-PvdSeries::PvdSeries(const std::string& path, const std::string& flag)
-    : path_(path), flag_(flag), out_(path, std::ios::binary | std::ios::trunc) {
-  if (!out_) throw InputError("flag", flag_, "cannot write '" + path_ + "'");
+PvdSeries::PvdSeries(const std::string& path, const std::string& output)
+    : path_(path), output_(output), out_(path, std::ios::binary | std::ios::trunc) {
+  if (!out_) throw InputError("output", output_, "cannot write '" + path_ + "'");
   out_ << std::setprecision(15)
        << "<?xml version=\"1.0\"?>\n"
           "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -46,7 +46,7 @@ void PvdSeries::Add(double time, int part, const std::string& file) {
 
 void PvdSeries::WriteClosingTags() {
   out_ << "</Collection>\n</VTKFile>\n" << std::flush;
-  if (!out_) throw InputError("flag", flag_, "cannot write '" + path_ + "'");
+  if (!out_) throw InputError("output", output_, "cannot write '" + path_ + "'");
 }
 
 }  // namespace ipstep

@@ -11,9 +11,9 @@ namespace ipstep {
 class PvdSeries {
  public:
   // Creates the .pvd at `path` (an empty collection); the data files are named
-  // relative to its directory. Throws InputError naming `flag` if it cannot be
+  // relative to its directory. Throws InputError naming `output` if it cannot be
   // written.
-  PvdSeries(const std::string& path, const std::string& flag);
+  PvdSeries(const std::string& path, const std::string& output);
   // Adds `file` (relative to the .pvd's directory) as part `part` at `time`
   // [s]. The .pvd is complete after every call (also when a run stops there):
   // the entry is written over the closing tags, which follow it again.
@@ -23,7 +23,7 @@ class PvdSeries {
   void WriteClosingTags();
 
   std::string path_;
-  std::string flag_;
+  std::string output_;
   std::ofstream out_;
   std::streampos end_of_entries_;
 };

@@ -8,18 +8,18 @@
 namespace ipstep {
 namespace {
 
-std::ofstream OpenForWriting(const std::string& path, const std::string& flag) {
+std::ofstream OpenForWriting(const std::string& path, const std::string& output) {
   std::ofstream out(path);
-  if (!out) throw InputError("flag", flag, "cannot write '" + path + "'");
+  if (!out) throw InputError("output", output, "cannot write '" + path + "'");
   out << std::setprecision(17);
   return out;
 }
 
 }  // namespace
 
-StatsWriter::StatsWriter(const std::string& path, const std::string& flag,
+StatsWriter::StatsWriter(const std::string& path, const std::string& output,
                          const std::vector<std::string>& diagnostic_names)
-    : out_(OpenForWriting(path, flag)) {
+    : out_(OpenForWriting(path, output)) {
   out_ << "step,time,iterations,evaluations,converged,status,wall_seconds,kinetic_energy,"
           "potential_energy,total_energy,residual,substeps,energy_growth";
   for (const std::string& name : diagnostic_names) out_ << ',' << name;
@@ -38,8 +38,8 @@ void StatsWriter::Write(const StepReport& r) {
   out_ << '\n';
 }
 
-IterationLogWriter::IterationLogWriter(const std::string& path, const std::string& flag)
-    : out_(OpenForWriting(path, flag)) {
+IterationLogWriter::IterationLogWriter(const std::string& path, const std::string& output)
+    : out_(OpenForWriting(path, output)) {
   out_ << "step,iteration,energy,gradient_norm,step_size,seconds,residual\n";
 }
 

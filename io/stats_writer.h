@@ -13,9 +13,10 @@ namespace ipstep {
 
 class StatsWriter {
  public:
-  // Throws InputError naming `flag` if the file cannot be written.
+  // Throws InputError "output: <output>: cannot write '<path>'" if the file
+  // cannot be written (`output`: the caller's name for it, e.g. "stats").
   // `diagnostic_names`: extra columns (Simulation::DiagnosticNames()).
-  StatsWriter(const std::string& path, const std::string& flag,
+  StatsWriter(const std::string& path, const std::string& output,
               const std::vector<std::string>& diagnostic_names = {});
   void Write(const StepReport& report);
 
@@ -25,7 +26,8 @@ class StatsWriter {
 
 class IterationLogWriter {
  public:
-  IterationLogWriter(const std::string& path, const std::string& flag);
+  // As StatsWriter (e.g. `output` "iterations_log").
+  IterationLogWriter(const std::string& path, const std::string& output);
   void set_step(int step) { step_ = step; }
   void Write(const IterationRecord& record);
 

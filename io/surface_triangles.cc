@@ -20,6 +20,11 @@ Eigen::Vector3d Position(const Scene& scene, int node) {
 }  // namespace
 
 std::vector<std::array<int, 3>> SurfaceTriangles(const Scene& scene) {
+  if (!scene.surface.triangles.empty()) return scene.surface.triangles;
+  return SpringTriangles(scene);
+}
+
+std::vector<std::array<int, 3>> SpringTriangles(const Scene& scene) {
   const int n = scene.num_nodes();
   std::vector<std::vector<int>> neighbours(n);
   for (const Spring& s : scene.springs) {

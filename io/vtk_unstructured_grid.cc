@@ -28,9 +28,9 @@ void WriteVectors(std::ofstream& out, const std::vector<Eigen::Vector3d>& vector
 
 }  // namespace
 
-void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& flag) {
+void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output) {
   std::ofstream out(path);
-  if (!out) throw InputError("flag", flag, "cannot write '" + path + "'");
+  if (!out) throw InputError("output", output, "cannot write '" + path + "'");
   out << std::setprecision(std::numeric_limits<double>::max_digits10);
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -67,7 +67,7 @@ void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& f
   out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (VtkCell type : mesh.types) out << static_cast<int>(type) << '\n';
   out << "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw InputError("flag", flag, "cannot write '" + path + "'");
+  if (!out) throw InputError("output", output, "cannot write '" + path + "'");
 }
 
 }  // namespace ipstep

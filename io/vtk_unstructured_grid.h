@@ -33,8 +33,8 @@ struct VtkMesh {
   void AddCell(VtkCell type, std::vector<int> points);
 };
 
-// Writes `mesh` to `path`. Throws InputError naming `flag` if the file cannot
+// Writes `mesh` to `path`. Throws InputError naming `output` if the file cannot
 // be written.
-void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& flag);
+void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output);
 
 }  // namespace ipstep

@@ -324,7 +324,7 @@ class SceneParser {
       root.FailAt("nodes", std::string("no nodes: ") + kOneNodeSource);
     }
     if (options_.grid_size > 0 && source_key != "grid") {
-      throw InputError("flag", "--grid_size",
+      throw InputError("options", "SceneLoadOptions.grid_size",
                        "scene " + source_ + " has no \"grid\" whose size could be overridden");
     }
     const JsonNode generator = root.Get(source_key);
@@ -501,7 +501,7 @@ class SceneParser {
     ny_ = ReadIntInRange(grid.Get("ny"), 2, kMaxNodes);
     if (options_.grid_size > 0) {
       if (options_.grid_size < 2) {
-        throw InputError("flag", "--grid_size",
+        throw InputError("options", "SceneLoadOptions.grid_size",
                          "must be >= 2 to resize the grid of " + source_ + ", got " +
                              std::to_string(options_.grid_size));
       }
@@ -510,7 +510,8 @@ class SceneParser {
     if (static_cast<int64_t>(nx_) * ny_ > kMaxNodes) {
       const std::string what = "nx * ny = " + std::to_string(static_cast<int64_t>(nx_) * ny_) +
                                " nodes exceeds the limit of " + std::to_string(kMaxNodes);
-      if (options_.grid_size > 0) throw InputError("flag", "--grid_size", what + " in " + source_);
+      if (options_.grid_size > 0)
+        throw InputError("options", "SceneLoadOptions.grid_size", what + " in " + source_);
       grid.Fail(what);
     }
     const double width = ReadPositive(grid.Get("width"));

@@ -23,14 +23,14 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   time_step_ = options.time_step > 0.0 ? options.time_step : scene.time_step;
   steps_ = options.steps >= 0 ? options.steps : scene.steps;
   if (!(time_step_ >= limits::kMinTimeStep && time_step_ <= limits::kMaxTimeStep)) {
-    throw InputError("flag", "--dt",
+    throw InputError("options", "SimulationOptions.time_step",
                      "must be in " +
                          limits::RangeText(limits::kMinTimeStep, limits::kMaxTimeStep, "s") +
                          ", got " + limits::FormatLimit(time_step_));
   }
   if (steps_ > limits::kMaxSteps) {
     throw InputError(
-        "flag", "--steps",
+        "options", "SimulationOptions.steps",
         "must be in [0, " + std::to_string(limits::kMaxSteps) + "], got " + std::to_string(steps_));
   }
   integrator_ = MakeIntegrator(options.integrator);

@@ -26,7 +26,7 @@ LineSearchSolver::LineSearchSolver(IncrementalPotential* potential, const State*
       parameters_(function_->NumParameters()),
       gradient_(state->num_dofs()) {
   if (options.optimizer == Optimizer::kBfgs && function_->NumParameters() > kMaxBfgsParameters) {
-    throw InputError("flag", "--optimizer=bfgs",
+    throw InputError("options", "OptimizerOptions.optimizer=bfgs",
                      "BFGS stores a dense matrix of " + std::to_string(function_->NumParameters()) +
                          "^2 doubles; use lbfgs above " + std::to_string(kMaxBfgsParameters) +
                          " free degrees of freedom");
@@ -36,7 +36,7 @@ LineSearchSolver::LineSearchSolver(IncrementalPotential* potential, const State*
   const double lbfgs_doubles = 2.0 * ceres_options_.max_lbfgs_rank * function_->NumParameters();
   if (options.optimizer == Optimizer::kLbfgs &&
       lbfgs_doubles > static_cast<double>(kMaxBfgsParameters) * kMaxBfgsParameters) {
-    throw InputError("flag", "--lbfgs_rank",
+    throw InputError("options", "OptimizerOptions.lbfgs_rank",
                      "rank " + std::to_string(ceres_options_.max_lbfgs_rank) + " stores " +
                          std::to_string(2 * ceres_options_.max_lbfgs_rank) + " vectors of " +
                          std::to_string(function_->NumParameters()) +

@@ -79,12 +79,12 @@ void SetLineSearchOptions(const OptimizerOptions& o, CeresOptions* c) {
   }
   if (!o.line_search.empty() &&
       !ceres::StringToLineSearchType(o.line_search, &c->line_search_type)) {
-    throw InputError("flag", "--line_search",
+    throw InputError("options", "OptimizerOptions.line_search",
                      "unknown line search '" + o.line_search + "' (WOLFE or ARMIJO)");
   }
   if (!o.nonlinear_cg.empty() && !ceres::StringToNonlinearConjugateGradientType(
                                      o.nonlinear_cg, &c->nonlinear_conjugate_gradient_type)) {
-    throw InputError("flag", "--nonlinear_cg",
+    throw InputError("options", "OptimizerOptions.nonlinear_cg",
                      "unknown type '" + o.nonlinear_cg +
                          "' (FLETCHER_REEVES, POLAK_RIBIERE or HESTENES_STIEFEL)");
   }
@@ -108,7 +108,7 @@ Optimizer ParseOptimizer(const std::string& name) {
   for (const auto& entry : kNames) {
     if (name == entry.name) return entry.optimizer;
   }
-  throw InputError("flag", "--optimizer",
+  throw InputError("options", "OptimizerOptions.optimizer",
                    "unknown optimizer '" + name + "' (choose one of " + OptimizerNames() + ")");
 }
 
@@ -138,21 +138,21 @@ bool UsesNewtonModel(Optimizer optimizer) {
 // programs reject an explicit 0 at the flags layer (apps/solver_flags.cc).
 void ValidateOptimizerOptions(const OptimizerOptions& o) {
   if (!std::isfinite(o.tolerance) || o.tolerance <= 0.0) {
-    throw InputError("flag", "--tolerance",
+    throw InputError("options", "OptimizerOptions.tolerance",
                      "must be a finite number > 0, got " + std::to_string(o.tolerance));
   }
   if (o.max_iterations < 0 || o.max_iterations > limits::kMaxIterations) {
-    throw InputError("flag", "--max_iterations",
+    throw InputError("options", "OptimizerOptions.max_iterations",
                      "must be in [1, " + std::to_string(limits::kMaxIterations) +
                          "] (0: the optimizer's default), got " + std::to_string(o.max_iterations));
   }
   if (!(o.time_limit >= 0.0 && o.time_limit <= limits::kMaxTimeLimit)) {
-    throw InputError("flag", "--time_limit",
+    throw InputError("options", "OptimizerOptions.time_limit",
                      "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s", true) +
                          " (0: none), got " + limits::FormatLimit(o.time_limit));
   }
   if (o.num_threads < 1 || o.num_threads > limits::kMaxThreads) {
-    throw InputError("flag", "--num_threads",
+    throw InputError("options", "OptimizerOptions.num_threads",
                      "must be in [1, " + std::to_string(limits::kMaxThreads) + "], got " +
                          std::to_string(o.num_threads));
   }
@@ -161,13 +161,13 @@ void ValidateOptimizerOptions(const OptimizerOptions& o) {
       (radius > 0.0 &&
        (radius < limits::kMinTrustRegionRadius || radius > limits::kMaxTrustRegionRadius))) {
     throw InputError(
-        "flag", "--trust_region_radius",
+        "options", "OptimizerOptions.initial_trust_region_radius",
         "must be in " +
             limits::RangeText(limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius) +
             " (0: the default), got " + limits::FormatLimit(radius));
   }
   if (o.lbfgs_rank < 0 || o.lbfgs_rank > limits::kMaxLbfgsRank) {
-    throw InputError("flag", "--lbfgs_rank",
+    throw InputError("options", "OptimizerOptions.lbfgs_rank",
                      "must be in [1, " + std::to_string(limits::kMaxLbfgsRank) +
                          "] (0: default 20), got " + std::to_string(o.lbfgs_rank));
   }
@@ -176,7 +176,7 @@ void ValidateOptimizerOptions(const OptimizerOptions& o) {
 ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
   ValidateOptimizerOptions(o);
   if (!IsTrustRegion(o.optimizer)) {
-    throw InputError("flag", "--optimizer",
+    throw InputError("options", "OptimizerOptions.optimizer",
                      std::string(OptimizerName(o.optimizer)) + " is not a trust-region optimizer");
   }
   ceres::Solver::Options c;
@@ -198,19 +198,20 @@ ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
   }
   if (!o.linear_solver.empty() &&
       !ceres::StringToLinearSolverType(o.linear_solver, &c.linear_solver_type)) {
-    throw InputError("flag", "--linear_solver",
+    throw InputError("options", "OptimizerOptions.linear_solver",
                      "unknown linear solver '" + o.linear_solver +
                          "' (e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, DENSE_NORMAL_CHOLESKY, CGNR)");
   }
   if (!o.sparse_library.empty() && !ceres::StringToSparseLinearAlgebraLibraryType(
                                        o.sparse_library, &c.sparse_linear_algebra_library_type)) {
-    throw InputError("flag", "--sparse_library",
+    throw InputError("options", "OptimizerOptions.sparse_library",
                      "unknown sparse library '" + o.sparse_library +
                          "' (SUITE_SPARSE, CX_SPARSE or EIGEN_SPARSE)");
   }
   std::string error;
   if (!c.IsValid(&error)) {
-    throw InputError("flag", "--optimizer=" + std::string(OptimizerName(o.optimizer)),
+    throw InputError("options",
+                     "OptimizerOptions.optimizer=" + std::string(OptimizerName(o.optimizer)),
                      "invalid Ceres options: " + error);
   }
   return c;
@@ -219,7 +220,7 @@ ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
 ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& o) {
   ValidateOptimizerOptions(o);
   if (FamilyOf(o.optimizer) != OptimizerFamily::kLineSearch) {
-    throw InputError("flag", "--optimizer",
+    throw InputError("options", "OptimizerOptions.optimizer",
                      std::string(OptimizerName(o.optimizer)) + " is not a line-search optimizer");
   }
   ceres::GradientProblemSolver::Options c;
@@ -228,7 +229,7 @@ ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptio
   std::string error;
   if (!c.IsValid(&error)) {
     throw InputError(
-        "flag", "--line_search",
+        "options", "OptimizerOptions.line_search",
         "invalid Ceres options for " + std::string(OptimizerName(o.optimizer)) + ": " + error);
   }
   return c;

@@ -46,7 +46,7 @@ enum class OptimizerFamily { kTrustRegion, kLineSearch, kEigenNewton };
 
 const char* OptimizerName(Optimizer optimizer);
 const char* OptimizerNames();  // comma-separated list for messages
-// Throws InputError naming --optimizer.
+// Throws InputError naming the option OptimizerOptions.optimizer.
 Optimizer ParseOptimizer(const std::string& name);
 OptimizerFamily FamilyOf(Optimizer optimizer);
 bool IsTrustRegion(Optimizer optimizer);
@@ -85,11 +85,13 @@ struct OptimizerOptions {
 };
 
 // The Ceres options for the trust-region optimisers (newton, dogleg), validated
-// with Solver::Options::IsValid. Throws InputError naming the offending flag.
+// with Solver::Options::IsValid. Throws InputError naming the offending option
+// ("options: OptimizerOptions.<field>: ...", README "Using ipstep as a library").
 ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& options);
 // The same for the line-search optimisers.
 ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& options);
-// Validates the numeric fields (tolerance, limits): throws InputError.
+// Validates the numeric fields (tolerance, limits): throws InputError naming the
+// field.
 void ValidateOptimizerOptions(const OptimizerOptions& options);
 
 }  // namespace ipstep

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -76,6 +77,69 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("stray_argument", "command line", "stray_argument");
   ExpectInputError("--scene=cloth --friction_mu=0.3", "flag", "--friction_mu");
   ExpectInputError("--scene=oscillator --contact_dhat=0.01", "flag", "--contact_dhat");
+}
+
+// Errors the library reports name its options ("options: OptimizerOptions.
+// tolerance: ..."); the programs print them naming the flag, from one table
+// (apps/flag_names.h), and never the library's name.
+TEST_F(ProgramInput, LibraryErrorsNameTheFlag) {
+  const struct {
+    std::string arguments;
+    std::string start;
+  } cases[] = {
+      {"--tolerance=0", "ipstep: error: flag: --tolerance: must be a finite number > 0"},
+      {"--optimizer=adam", "ipstep: error: flag: --optimizer: unknown optimizer 'adam'"},
+      {"--integrator=rk4", "ipstep: error: flag: --integrator: unknown integrator 'rk4'"},
+      {"--integrator=newmark --newmark_beta=0",
+       "ipstep: error: flag: --newmark_beta: must be in [1e-3, 1], got 0"},
+      {"--integrator=newmark --newmark_gamma=2",
+       "ipstep: error: flag: --newmark_gamma: must be in [0.5, 1], got 2"},
+      {"--linear_solver=MAGIC", "ipstep: error: flag: --linear_solver: unknown linear solver"},
+      {"--sparse_library=MKL", "ipstep: error: flag: --sparse_library: unknown sparse library"},
+      {"--optimizer=lbfgs --line_search=GOLDEN",
+       "ipstep: error: flag: --line_search: unknown line search 'GOLDEN'"},
+      {"--optimizer=ncg --nonlinear_cg=DAI_YUAN",
+       "ipstep: error: flag: --nonlinear_cg: unknown type 'DAI_YUAN'"},
+      {"--optimizer=lbfgs --line_search=ARMIJO",
+       "ipstep: error: flag: --line_search: invalid Ceres options for lbfgs"},
+      {"--grid_size=50", "ipstep: error: flag: --grid_size: scene "},
+      {"--scene=cloth_sphere --grid_size=100 --optimizer=bfgs --steps=1",
+       "ipstep: error: flag: --optimizer=bfgs: BFGS stores a dense matrix"},
+      {"--stats=/nonexistent_dir/x.csv",
+       "ipstep: error: flag: --stats: cannot write '/nonexistent_dir/x.csv'"},
+      {"--iterations_log=/nonexistent_dir/x.csv",
+       "ipstep: error: flag: --iterations_log: cannot write '/nonexistent_dir/x.csv'"},
+      {"--frames=/dev/null/frames",
+       "ipstep: error: flag: --frames: cannot create directory '/dev/null/frames'"},
+  };
+  for (const auto& c : cases) {
+    ExpectInputError(c.arguments, "flag", "--");
+    const Outcome o = RunIpstep(c.arguments);
+    EXPECT_EQ(o.output.rfind(c.start, 0), 0u) << c.arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.find("Options."), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("output:"), std::string::npos) << o.output;
+  }
+  // --positions is written after the run (its report is on stdout first).
+  const Outcome positions = RunIpstep("--steps=1 --positions=/nonexistent_dir/x.csv");
+  EXPECT_EQ(positions.exit_code, 2) << positions.output;
+  EXPECT_NE(positions.output.find(
+                "\nipstep: error: flag: --positions: cannot write '/nonexistent_dir/x.csv'\n"),
+            std::string::npos)
+      << positions.output;
+  // The explicit alternative is an integrator, named as its flag would be given.
+  const Outcome beta = RunIpstep("--integrator=newmark --newmark_beta=0");
+  EXPECT_NE(beta.output.find("use the integrator symplectic_euler"), std::string::npos)
+      << beta.output;
+  // ipstep_compare: the same names; an integrator's bad parameter is not an
+  // unknown integrator of --integrators.
+  const Outcome compare = ipstep::testing::RunProgram(
+      IPSTEP_COMPARE_BINARY, "--integrator=newmark --newmark_beta=0 --integrators=newmark");
+  EXPECT_EQ(compare.exit_code, 2) << compare.output;
+  EXPECT_EQ(compare.output.rfind("ipstep_compare: error: flag: --newmark_beta: must be in", 0), 0u)
+      << compare.output;
+  const Outcome tolerance = ipstep::testing::RunProgram(IPSTEP_COMPARE_BINARY, "--tolerance=-1");
+  EXPECT_EQ(tolerance.output.rfind("ipstep_compare: error: flag: --tolerance: must be", 0), 0u)
+      << tolerance.output;
 }
 
 // An unset flag means the default; an explicit 0 (or -1) is a value, and out
@@ -243,6 +307,19 @@ TEST_F(ProgramInput, BenchFlagsFollowTheContract) {
     EXPECT_EQ(o.exit_code, 0) << help << "\n" << o.output.substr(0, 300);
   }
   EXPECT_NE(run("--helpshort").output.find("repeats"), std::string::npos);
+  // An item the library rejects names the list flag ipstep_bench has, and the item.
+  for (const auto& [arguments, start] : std::vector<std::pair<std::string, std::string>>{
+           {"--optimizers=newton+sparse=MKL",
+            "ipstep_bench: error: flag: --optimizers: 'newton+sparse=MKL': unknown sparse library "
+            "'MKL'"},
+           {"--optimizers=adam",
+            "ipstep_bench: error: flag: --optimizers: 'adam': unknown optimizer"},
+           {"--integrators=rk4",
+            "ipstep_bench: error: flag: --integrators: 'rk4': unknown integrator 'rk4'"}}) {
+    const Outcome o = run(arguments + " --dry_run --output=" + (dir_ / "out.csv").string());
+    EXPECT_EQ(o.exit_code, 2) << arguments << "\n" << o.output;
+    EXPECT_EQ(o.output.rfind(start, 0), 0u) << arguments << "\n" << o.output;
+  }
   // A run that blows up is "diverged" in the CSV, with no drift or error value.
   const std::string csv = (dir_ / "diverged.csv").string();
   const Outcome blown =

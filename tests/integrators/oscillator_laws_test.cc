@@ -133,11 +133,13 @@ TEST(OscillatorLaws, NewmarkParametersOutsideTheirRangeAreInputErrors) {
   };
   for (double beta : {1e-300, 0.0, 9e-4, -0.25, 1.5, std::nan("")}) {
     const std::string m = message(beta, 0.5);
-    EXPECT_EQ(m.rfind("flag: --newmark_beta: must be in [1e-3, 1]", 0), 0u) << beta << ": " << m;
+    EXPECT_EQ(m.rfind("options: IntegratorOptions.newmark_beta: must be in [1e-3, 1]", 0), 0u)
+        << beta << ": " << m;
   }
   for (double gamma : {0.0, 0.4, 0.4999, 1.5, std::numeric_limits<double>::infinity()}) {
     const std::string m = message(0.25, gamma);
-    EXPECT_EQ(m.rfind("flag: --newmark_gamma: must be in [0.5, 1]", 0), 0u) << gamma << ": " << m;
+    EXPECT_EQ(m.rfind("options: IntegratorOptions.newmark_gamma: must be in [0.5, 1]", 0), 0u)
+        << gamma << ": " << m;
   }
   for (double beta : {1e-3, 0.25, 1.0}) {
     for (double gamma : {0.5, 0.75, 1.0}) EXPECT_EQ(message(beta, gamma), "");

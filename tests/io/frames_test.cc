@@ -1,9 +1,11 @@
 // --frames: the ParaView time series (io/frame_writer.h). The .pvd lists every
 // frame at its simulated time; each .vtu holds the scene's nodes, springs and
 // triangles; obstacles are drawn where they are at that time.
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <regex>
@@ -20,6 +22,8 @@
 #include "energies/effect_registry.h"
 #include "io/frame_writer.h"
 #include "io/obstacle_mesh.h"
+#include "io/positions_writer.h"
+#include "io/stats_writer.h"
 #include "io/surface_triangles.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
@@ -184,11 +188,11 @@ TEST_F(Frames, MovingObstaclesAreDrawnWhereTheyAre) {
   }
 }
 
-TEST(SurfaceTriangles, TwoPerCellWithoutOverlapsOrBendingChords) {
+TEST(SurfaceTriangles, GuessedTwoPerCellWithoutOverlapsOrBendingChords) {
   // cloth_sphere: 10 x 10 nodes with structural, shear and bending springs.
   const ipstep::Scene cloth = Load("cloth_sphere");
   ASSERT_EQ(cloth.num_nodes(), 100);
-  const auto triangles = ipstep::SurfaceTriangles(cloth);
+  const auto triangles = ipstep::SpringTriangles(cloth);
   EXPECT_EQ(triangles.size(), 2u * 9 * 9);
   // Their areas add up to the cloth's (1 m x 1 m, flat at the start).
   double area = 0.0;
@@ -200,7 +204,60 @@ TEST(SurfaceTriangles, TwoPerCellWithoutOverlapsOrBendingChords) {
   }
   EXPECT_NEAR(area, 1.0, 1e-9);
   // A chain has springs but no triangles.
+  EXPECT_TRUE(ipstep::SpringTriangles(Load("fpu")).empty());
   EXPECT_TRUE(ipstep::SurfaceTriangles(Load("fpu")).empty());
+  // 2D scenes declare edges, not triangles: their cells are guessed.
+  const ipstep::Scene drop = Load("drop");
+  EXPECT_TRUE(drop.surface.triangles.empty());
+  EXPECT_EQ(ipstep::SurfaceTriangles(drop), ipstep::SpringTriangles(drop));
+}
+
+// A scene that declares its surface is drawn with the declared triangles, not
+// the guess: a 3D grid's two per cell, and a "surface" key's triangles even
+// where the springs would suggest others.
+TEST(SurfaceTriangles, DeclaredTrianglesAreDrawn) {
+  const ipstep::Scene cloth = Load("cloth_sphere");
+  ASSERT_EQ(cloth.surface.triangles.size(), 2u * 9 * 9);
+  EXPECT_EQ(ipstep::SurfaceTriangles(cloth), cloth.surface.triangles);
+
+  // A unit square in 3D whose springs run along its edges and the diagonal
+  // 0-2 (guessed: 0-1-2 and 0-2-3), declaring the triangles across the other
+  // diagonal 1-3.
+  ipstep::SceneLoadOptions options;
+  options.extra_effects = ipstep::DefaultEffects().UserNames();
+  const ipstep::Scene square = ipstep::ParseScene(std::string(R"({
+    "dimension": 3,
+    "effects": ["springs", "contact"],
+    "nodes": {"positions": [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], "total_mass": 1},
+    "springs": [{"nodes": [0, 1], "model": "hookean", "stiffness": 10}, {"nodes": [1, 2], "model": "hookean", "stiffness": 10},
+                {"nodes": [2, 3], "model": "hookean", "stiffness": 10}, {"nodes": [3, 0], "model": "hookean", "stiffness": 10},
+                {"nodes": [0, 2], "model": "hookean", "stiffness": 10}],
+    "surface": {"triangles": [[0, 1, 3], [1, 2, 3]]},
+    "contact": {"obstacles": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}]}
+  })"),
+                                                  "square.json", options);
+  using Triangles = std::vector<std::array<int, 3>>;
+  EXPECT_EQ(ipstep::SpringTriangles(square), (Triangles{{0, 1, 2}, {0, 2, 3}}));
+  EXPECT_EQ(ipstep::SurfaceTriangles(square), (Triangles{{0, 1, 3}, {1, 2, 3}}));
+}
+
+// The frames of a scene with a declared surface hold its triangles.
+TEST_F(Frames, DeclaredSurfaceIsWrittenToTheFrames) {
+  ipstep::Scene scene;
+  Run("cloth_sphere", 1, &scene);
+  const std::string vtu = ReadFile(dir_ / "frames" / "frame_00000.vtu");
+  const std::vector<double> kind = NamedArray(vtu, "kind");
+  const std::vector<double> connectivity = NamedArray(vtu, "connectivity");
+  ASSERT_EQ(kind.size(), scene.springs.size() + scene.surface.triangles.size());
+  // Springs (2 points each) come first, then the triangles in declared order.
+  const size_t first = 2 * scene.springs.size();
+  ASSERT_EQ(connectivity.size(), first + 3 * scene.surface.triangles.size());
+  for (size_t t = 0; t < scene.surface.triangles.size(); ++t) {
+    EXPECT_EQ(kind[scene.springs.size() + t], 1.0);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(connectivity[first + 3 * t + k], scene.surface.triangles[t][k]) << t;
+    }
+  }
 }
 
 TEST(ObstacleMesh, SpheresBoxesAndPlanesAtTheirTime) {
@@ -234,8 +291,31 @@ TEST_F(Frames, UnwritableDirectoryIsAnInputError) {
     ipstep::FrameWriter frames((dir_ / "file" / "frames").string(), sim);
     FAIL() << "no error";
   } catch (const ipstep::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--frames"), std::string::npos) << e.what();
+    // The library names the output as its caller did (default "frames"), not a flag.
+    EXPECT_EQ(std::string(e.what()).rfind("output: frames: cannot create directory '", 0), 0u)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
   }
+}
+
+// The CSV writers name the output as their caller does, with the path.
+TEST_F(Frames, UnwritableFilesNameTheOutput) {
+  const ipstep::Scene scene = Load("oscillator");
+  ipstep::Simulation sim(scene, {});
+  const std::string path = (dir_ / "missing" / "x.csv").string();
+  const auto expect_error = [&path](const std::function<void()>& write, const std::string& name) {
+    try {
+      write();
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const ipstep::InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "output: " + name + ": cannot write '" + path + "'");
+    }
+  };
+  expect_error([&] { ipstep::StatsWriter writer(path, "stats"); }, "stats");
+  expect_error([&] { ipstep::IterationLogWriter writer(path, "iterations_log"); },
+               "iterations_log");
+  expect_error([&] { ipstep::WritePositionsCsv(sim.state(), path, "final positions"); },
+               "final positions");
 }
 
 }  // namespace

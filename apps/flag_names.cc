@@ -1,0 +1,68 @@
+#include "apps/flag_names.h"
+
+namespace ipstep {
+
+const std::vector<FlagName>& FlagNames() {
+  static const std::vector<FlagName> names = {
+      // solver/optimizer_options.cc, solver/line_search_solver.cc
+      {"options: OptimizerOptions.optimizer", "optimizer"},
+      {"options: OptimizerOptions.tolerance", "tolerance"},
+      {"options: OptimizerOptions.max_iterations", "max_iterations"},
+      {"options: OptimizerOptions.time_limit", "time_limit"},
+      {"options: OptimizerOptions.num_threads", "num_threads"},
+      {"options: OptimizerOptions.initial_trust_region_radius", "trust_region_radius"},
+      {"options: OptimizerOptions.linear_solver", "linear_solver"},
+      {"options: OptimizerOptions.sparse_library", "sparse_library"},
+      {"options: OptimizerOptions.line_search", "line_search"},
+      {"options: OptimizerOptions.nonlinear_cg", "nonlinear_cg"},
+      {"options: OptimizerOptions.lbfgs_rank", "lbfgs_rank"},
+      // integrators/integrator.cc
+      {"options: IntegratorOptions.name", "integrator"},
+      {"options: IntegratorOptions.newmark_beta", "newmark_beta"},
+      {"options: IntegratorOptions.newmark_gamma", "newmark_gamma"},
+      // sim/simulation.cc
+      {"options: SimulationOptions.time_step", "dt"},
+      {"options: SimulationOptions.steps", "steps"},
+      // problems/scene_loader.cc
+      {"options: SceneLoadOptions.grid_size", "grid_size"},
+      // io/: the names apps/ipstep_program.cc gives its outputs
+      {"output: stats", "stats"},
+      {"output: iterations_log", "iterations_log"},
+      {"output: positions", "positions"},
+      {"output: frames", "frames"},
+  };
+  return names;
+}
+
+const std::vector<UnmappedName>& UnmappedNames() {
+  static const std::vector<UnmappedName> names = {
+      {"options: effect_overrides.",
+       "the contact flags are range-checked and checked against the scene's effects in "
+       "apps/contact_flags.cc before they become overrides, and one effect's overrides come "
+       "from several flags (--contact_kappa, --contact_dhat)"},
+  };
+  return names;
+}
+
+std::string FlagFor(const std::string& library_name) {
+  const std::string name = library_name.substr(0, library_name.find('='));
+  for (const FlagName& entry : FlagNames()) {
+    if (name == entry.library_name) return entry.flag;
+  }
+  return "";
+}
+
+std::string WithFlagNames(const std::string& message) {
+  const size_t kind_end = message.find(": ");
+  if (kind_end == std::string::npos) return message;
+  const size_t name_end = message.find(": ", kind_end + 2);
+  if (name_end == std::string::npos) return message;
+  const std::string name = message.substr(0, name_end);  // "options: X.y" or "options: X.y=v"
+  const std::string flag = FlagFor(name);
+  if (flag.empty()) return message;
+  const size_t equals = name.find('=');
+  const std::string value = equals == std::string::npos ? "" : name.substr(equals);
+  return "flag: --" + flag + value + message.substr(name_end);
+}
+
+}  // namespace ipstep

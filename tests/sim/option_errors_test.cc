@@ -1,0 +1,157 @@
+// The library names bad options as the library spells them,
+// "options: <Struct>.<field>: ..." (README "Using ipstep as a library"), never
+// a program's flag: a program using ipstep as a library has no flags (the
+// programs map the names to theirs, apps/flag_names.h).
+#include <functional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/input_error.h"
+#include "integrators/integrator.h"
+#include "problems/scene_loader.h"
+#include "sim/default_effects.h"
+#include "sim/simulation.h"
+#include "solver/optimizer_options.h"
+#include "tests/support/test_scenes.h"
+
+namespace ipstep {
+namespace {
+
+// `action` throws an InputError "options: <option>: ..." that names no flag.
+void ExpectOptionError(const std::function<void()>& action, const std::string& option) {
+  try {
+    action();
+    ADD_FAILURE() << "no error for " << option;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("options: " + option + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.find("--"), std::string::npos) << message;
+    EXPECT_EQ(message.find("flag"), std::string::npos) << message;
+  }
+}
+
+OptimizerOptions With(const std::function<void(OptimizerOptions*)>& change) {
+  OptimizerOptions options;
+  change(&options);
+  return options;
+}
+
+TEST(OptionErrors, OptimizerOptionsNameTheirField) {
+  ExpectOptionError([] { ParseOptimizer("adam"); }, "OptimizerOptions.optimizer");
+  const struct {
+    std::function<void(OptimizerOptions*)> change;
+    const char* option;
+  } cases[] = {
+      {[](OptimizerOptions* o) { o->tolerance = 0.0; }, "OptimizerOptions.tolerance"},
+      {[](OptimizerOptions* o) { o->max_iterations = -1; }, "OptimizerOptions.max_iterations"},
+      {[](OptimizerOptions* o) { o->time_limit = -1.0; }, "OptimizerOptions.time_limit"},
+      {[](OptimizerOptions* o) { o->num_threads = 0; }, "OptimizerOptions.num_threads"},
+      {[](OptimizerOptions* o) { o->initial_trust_region_radius = 1e300; },
+       "OptimizerOptions.initial_trust_region_radius"},
+      {[](OptimizerOptions* o) { o->lbfgs_rank = -1; }, "OptimizerOptions.lbfgs_rank"},
+  };
+  for (const auto& c : cases) {
+    const OptimizerOptions options = With(c.change);
+    ExpectOptionError([&options] { ValidateOptimizerOptions(options); }, c.option);
+  }
+  ExpectOptionError(
+      [] { MakeTrustRegionOptions(With([](OptimizerOptions* o) { o->linear_solver = "MAGIC"; })); },
+      "OptimizerOptions.linear_solver");
+  ExpectOptionError(
+      [] { MakeTrustRegionOptions(With([](OptimizerOptions* o) { o->sparse_library = "MKL"; })); },
+      "OptimizerOptions.sparse_library");
+  ExpectOptionError(
+      [] {
+        MakeTrustRegionOptions(With([](OptimizerOptions* o) { o->optimizer = Optimizer::kLbfgs; }));
+      },
+      "OptimizerOptions.optimizer");
+  ExpectOptionError(
+      [] {
+        MakeLineSearchOptions(With([](OptimizerOptions* o) {
+          o->optimizer = Optimizer::kLbfgs;
+          o->line_search = "GOLDEN";
+        }));
+      },
+      "OptimizerOptions.line_search");
+  ExpectOptionError(
+      [] {
+        MakeLineSearchOptions(With([](OptimizerOptions* o) {
+          o->optimizer = Optimizer::kNcg;
+          o->nonlinear_cg = "DAI_YUAN";
+        }));
+      },
+      "OptimizerOptions.nonlinear_cg");
+  // L-BFGS with an Armijo line search: Ceres's own check, named by the field.
+  ExpectOptionError(
+      [] {
+        MakeLineSearchOptions(With([](OptimizerOptions* o) {
+          o->optimizer = Optimizer::kLbfgs;
+          o->line_search = "ARMIJO";
+        }));
+      },
+      "OptimizerOptions.line_search");
+}
+
+TEST(OptionErrors, IntegratorOptionsNameTheirField) {
+  ExpectOptionError([] { MakeIntegrator({"rk4", 0.25, 0.5}); }, "IntegratorOptions.name");
+  ExpectOptionError(
+      [] {
+        MakeIntegrator({"newmark", 0.0, 0.5});
+      },
+      "IntegratorOptions.newmark_beta");
+  ExpectOptionError(
+      [] {
+        MakeIntegrator({"newmark", 0.25, 0.4});
+      },
+      "IntegratorOptions.newmark_gamma");
+  // The explicit alternative is named as a value of the option.
+  try {
+    MakeIntegrator({"newmark", 0.0, 0.5});
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("use the integrator symplectic_euler"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(OptionErrors, SimulationOptionsNameTheirField) {
+  const Scene scene = testing::OscillatorScene();
+  SimulationOptions options;
+  options.time_step = 1e9;
+  ExpectOptionError([&] { Simulation sim(scene, options); }, "SimulationOptions.time_step");
+  options = {};
+  options.steps = 2000000000;
+  ExpectOptionError([&] { Simulation sim(scene, options); }, "SimulationOptions.steps");
+  // The optimizer's and integrator's options, checked when the simulation is built.
+  options = {};
+  options.optimizer.tolerance = -1.0;
+  ExpectOptionError([&] { Simulation sim(scene, options); }, "OptimizerOptions.tolerance");
+  options = {};
+  options.integrator.name = "leapfrog";
+  ExpectOptionError([&] { Simulation sim(scene, options); }, "IntegratorOptions.name");
+}
+
+// Dense BFGS on 100 x 100 nodes in 3D (30,000 free degrees of freedom): the
+// option's value is named with it.
+TEST(OptionErrors, BfgsTooLargeNamesTheOptimizerValue) {
+  SceneLoadOptions load;
+  load.extra_effects = DefaultEffects().UserNames();
+  load.grid_size = 100;
+  const Scene scene = LoadScene("cloth_sphere", load);
+  SimulationOptions options;
+  options.optimizer.optimizer = Optimizer::kBfgs;
+  ExpectOptionError([&] { Simulation sim(scene, options); }, "OptimizerOptions.optimizer=bfgs");
+}
+
+TEST(OptionErrors, SceneLoadOptionsNameTheirField) {
+  SceneLoadOptions load;
+  load.grid_size = 10;
+  ExpectOptionError([&] { LoadScene("oscillator", load); }, "SceneLoadOptions.grid_size");
+  load.grid_size = 1;
+  ExpectOptionError([&] { LoadScene("hanging_square", load); }, "SceneLoadOptions.grid_size");
+  load.grid_size = 1001;  // 1001^2 nodes: over the loader's limit
+  ExpectOptionError([&] { LoadScene("hanging_square", load); }, "SceneLoadOptions.grid_size");
+}
+
+}  // namespace
+}  // namespace ipstep
