@@ -10,7 +10,14 @@ writes
                          velocity of the scene's rotation (2 rad/s about the
                          bar's axis), regenerated for the finer face;
   OUT_DIR/squash_N.json  squash_square with N x N cells;
-for the sizes below (3D: 10^3 to 10^5 DOFs, 2D: 10^3 to 10^5 DOFs).
+for the sizes below (3D: 10^3 to 10^5 DOFs, 2D: 10^3 to 10^5 DOFs), and
+  OUT_DIR/cantilever_raised.json  cantilever_2d moved up by 1 m, for
+                         ipstep_bench: the built-in beam lies about y = 0, so
+                         its initial energy (gravity potential included) is 0
+                         and ipstep_bench's divergence test, |E_n - E_0| >
+                         1e6 |E_0| (apps/divergence.h), calls every run
+                         diverged at its first step. Moving it changes nothing
+                         else (uniform gravity, the clamp moves with it).
 """
 import copy
 import json
@@ -55,6 +62,16 @@ def squash(n):
     return scene
 
 
+def cantilever_raised():
+    with open(os.path.join(PROBLEMS, "cantilever_2d.json")) as f:
+        scene = json.load(f)
+    origin = scene["solid"]["mesh"]["origin"]
+    scene["solid"]["mesh"]["origin"] = [origin[0], origin[1] + 1.0]
+    scene["name"] = "cantilever_raised"
+    scene["description"] = "cantilever_2d moved up by 1 m (nonzero initial energy)"
+    return scene
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -66,6 +83,8 @@ def main():
     for n in SQUASH_SIZES:
         with open(os.path.join(out, "squash_%d.json" % n), "w") as f:
             json.dump(squash(n), f, indent=1)
+    with open(os.path.join(out, "cantilever_raised.json"), "w") as f:
+        json.dump(cantilever_raised(), f, indent=1)
     # Check: bar(2) reproduces the built-in scene's moving nodes.
     with open(os.path.join(PROBLEMS, "twisted_bar_3d.json")) as f:
         builtin = json.load(f)
