@@ -243,9 +243,9 @@ TEST(ElasticEnergy, GradientAndNewtonHessianMatchFiniteDifferences) {
   }
 }
 
-// Deformation gradients for the curvature checks: generic ones, strongly
-// compressed ones (J from 0.1 to 0.5), a stretched and a sheared one; every
-// det F > 0.
+// Deformation gradients for the curvature checks: generic ones, compressed
+// ones (J 0.17-0.46, and one flattened to 10 %: J = 0.1), stretched ones
+// (J 2.3-3.2) and a sheared one; every det F > 0.
 std::vector<Eigen::MatrixXd> CurvatureTestGradients(int d) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> noise(-0.3, 0.3);
