@@ -1,5 +1,5 @@
 // Broad phase of 3D self-contact on an n x n cloth folded on itself
-// (tests/cloth_meshes.h): candidate pairs and build + query time of the BVH
+// (tests/support/cloth_meshes.h): candidate pairs and build + query time of the BVH
 // (contact/bvh.h) and of the spatial hash (contact/spatial_hash.h, cell size
 // the mean edge length, as the 2D self-contact uses), for point-triangle
 // (faces in the structure, nodes as queries) and edge-edge (edges both). The
@@ -20,7 +20,7 @@
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
 #include "contact/spatial_hash.h"
-#include "tests/cloth_meshes.h"
+#include "tests/support/cloth_meshes.h"
 
 namespace {
 

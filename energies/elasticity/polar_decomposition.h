@@ -17,7 +17,7 @@
 // of the iterates converge with the iterates (the map is analytic and its
 // derivative at the fixed point R is the projection onto the tangent space of
 // the rotations), and two iterations after the value has converged they agree
-// with dR/dF to round-off (tests/elasticity_test.cc checks the energy's
+// with dR/dF to round-off (tests/energies/elasticity_test.cc checks the energy's
 // gradient against finite differences). An SVD would need special care at
 // repeated singular values (F = I at rest), where its factors are not
 // differentiable although R is.

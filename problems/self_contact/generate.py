@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the 3D self-contact scenes of problems/self_contact/ (not built in:
-load them by path, tests/self_contact_scenes_test.cc does).
+load them by path, tests/contact/self_contact_scenes_test.cc does).
 
 Cloths are explicit node grids with structural springs and one shear
 diagonal per quad (squared strain), plus Hookean bending springs across two

@@ -22,7 +22,7 @@
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
 #include "sim/simulation.h"
-#include "tests/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 namespace ipstep {
 namespace {

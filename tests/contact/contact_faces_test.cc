@@ -17,7 +17,7 @@
 #include "contact/segment_segment.h"
 #include "core/input_error.h"
 #include "problems/scene_loader.h"
-#include "tests/finite_differences.h"
+#include "tests/support/finite_differences.h"
 
 namespace ipstep {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "core/input_error.h"
 #include "sim/simulation.h"
-#include "tests/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 namespace ipstep {
 namespace {

@@ -19,7 +19,7 @@
 #include "energies/rayleigh_mass_damping.h"
 #include "energies/rayleigh_stiffness_damping.h"
 #include "energies/squared_strain_spring.h"
-#include "tests/finite_differences.h"
+#include "tests/support/finite_differences.h"
 
 namespace ipstep {
 namespace {

@@ -15,7 +15,7 @@
 #include "contact/obstacle.h"
 #include "contact/point_edge.h"
 #include "contact/spatial_hash.h"
-#include "tests/finite_differences.h"
+#include "tests/support/finite_differences.h"
 
 namespace ipstep {
 namespace {

@@ -21,7 +21,7 @@
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
 #include "sim/simulation.h"
-#include "tests/run_program.h"
+#include "tests/support/run_program.h"
 
 namespace {
 

@@ -100,7 +100,7 @@ TEST(BuiltinScenesTest, NamesAndTexts) {
       (std::set<std::string>{
           "cloth", "cloth_box", "cloth_sphere", "drop", "fpu", "hanging_square", "impact",
           "oscillator", "slope", "spring_pendulum", "squeeze", "two_squares",
-          // elastic solids (tests/elasticity_test.cc)
+          // elastic solids (tests/energies/elasticity_test.cc)
           "ball_drop_3d", "ball_impact_3d", "cantilever_2d", "squash_square", "twisted_bar_3d"}));
   SceneLoadOptions options;
   options.extra_effects = DefaultEffects().UserNames();  // contact, friction

@@ -3,7 +3,7 @@
 // optimiser families) runs a fixed number of steps and must reproduce the
 // iterations of every step exactly and the final positions to 1e-9 m of the
 // reference recorded before the contact filter was split into pair sets
-// (tests/data/contact_reference.txt). A deliberate change of behaviour
+// (tests/contact/data/contact_reference.txt). A deliberate change of behaviour
 // regenerates the reference:
 //   IPSTEP_WRITE_CONTACT_REFERENCE=1 ./build/tests/contact_regression_test
 // and says why in its commit.
@@ -61,7 +61,7 @@ std::string Key(const Case& c) {
 }
 
 std::string ReferencePath() {
-  return std::string(IPSTEP_SOURCE_DIR) + "/tests/data/contact_reference.txt";
+  return std::string(IPSTEP_SOURCE_DIR) + "/tests/contact/data/contact_reference.txt";
 }
 
 Record RunCase(const Case& c) {

@@ -26,7 +26,7 @@
 #include "solver/newton_model_cost.h"
 #include "solver/projected_newton_solver.h"
 #include "solver/trust_region_solver.h"
-#include "tests/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 namespace ipstep {
 namespace {

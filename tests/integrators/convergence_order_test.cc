@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/simulation.h"
-#include "tests/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 namespace ipstep {
 namespace {

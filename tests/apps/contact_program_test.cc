@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/run_program.h"
+#include "tests/support/run_program.h"
 
 namespace {
 

@@ -28,7 +28,7 @@
 #include "problems/solid.h"
 #include "sim/default_effects.h"
 #include "sim/simulation.h"
-#include "tests/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 namespace ipstep {
 namespace {

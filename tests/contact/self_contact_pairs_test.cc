@@ -19,7 +19,7 @@
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
 #include "core/incremental_potential.h"
-#include "tests/cloth_meshes.h"
+#include "tests/support/cloth_meshes.h"
 
 namespace ipstep {
 namespace {
