@@ -59,6 +59,11 @@ void FillTerm(const ElasticMaterial& material, const double* const* rest, Term* 
     };
   }
   term->gauss_newton_model = F::kGaussNewtonModel;
+  if constexpr (HasAnalyticCurvature(kModel, kDim)) {
+    term->curvature = [functor](const double* const* x, const double* c, double* curvature) {
+      return functor.Curvature(x, c, curvature);
+    };
+  }
   if constexpr (kModel == ElasticModel::kNeoHookean) {
     term->loss = std::make_unique<OffsetLoss>(functor.offset);
   }

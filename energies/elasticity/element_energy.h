@@ -16,8 +16,10 @@
 //   is negative for nu < 0). fixed_corotated: r = [sqrt(2 mu V) (F - R)_ij
 //   (d^2 entries), sqrt(lambda V) (J - 1)], which needs lambda >= 0 (nu >= 0;
 //   the scene loader says so). The Gauss-Newton model J^T J of these residuals
-//   is PSD, the Newton model (core/term_hessian.h) adds sum r_k Hess r_k by
-//   central differences; linear's residuals are affine, so J^T J is its exact
+//   is PSD, the Newton model (core/term_hessian.h) adds sum r_k Hess r_k,
+//   analytic for stvk and 2D fixed_corotated (Curvature below,
+//   element_curvature.h), by central differences of the autodiff Jacobian for
+//   3D fixed_corotated; linear's residuals are affine, so J^T J is its exact
 //   Hessian (kGaussNewtonModel).
 // * neo_hookean is not a sum of squares (mu/2 (|F|^2 - d) - mu ln J vanishes
 //   quadratically on the rotations, so sqrt(2 V Psi) has a kink there). It uses
@@ -25,7 +27,8 @@
 //   long as 2 V Psi + c > 0, and the loss rho(s) = s - c (OffsetLoss: rho' = 1,
 //   rho'' = 0, so Ceres's corrector is the identity), which gives back
 //   1/2 rho(r^2) = V Psi exactly. Its Newton model is exact (r J^T = grad e and
-//   J^T J + r Hess r = Hess e); its Gauss-Newton model is only rank one. The
+//   J^T J + r Hess r = Hess e, Hess r analytic: element_curvature.h); its
+//   Gauss-Newton model is only rank one. The
 //   price is precision: e is the difference of r^2 / 2 and c / 2, about
 //   1e-20 mu V absolute, i.e. a relative error of 1e-20 / strain^2 per element
 //   (the loss is evaluated in double even by the extended-precision line-search
@@ -40,6 +43,7 @@
 
 #include <cmath>
 
+#include "energies/elasticity/element_curvature.h"
 #include "energies/elasticity/polar_decomposition.h"
 #include "problems/elastic_material.h"
 
@@ -176,6 +180,20 @@ struct ElasticElement {
       if (!(s > 0.0)) return false;
       r[0] = sqrt(s);
       return true;
+    }
+  }
+
+  // Term::curvature (core/term.h): sum_k c_k Hess r_k over the element's
+  // coordinates, row-major; for the models of HasAnalyticCurvature only.
+  bool Curvature(const double* const* x, const double* c, double* curvature) const {
+    static_assert(HasAnalyticCurvature(kModel, kDim));
+    if constexpr (kModel == ElasticModel::kNeoHookean) {
+      return element_curvature::NeoHookean<kDim>(x, dm_inv, volume, mu, lambda, offset, c[0],
+                                                 curvature);
+    } else if constexpr (kModel == ElasticModel::kStvk) {
+      return element_curvature::Stvk<kDim>(x, dm_inv, volume, mu, lambda, c, curvature);
+    } else {
+      return element_curvature::FixedCorotated2(x, dm_inv, volume, mu, lambda, c, curvature);
     }
   }
 

@@ -95,12 +95,13 @@ std::vector<double> VelocityOf(const Scene& scene, int node) {
 // ---- Built-in scenes ------------------------------------------------------
 
 TEST(BuiltinScenesTest, NamesAndTexts) {
-  EXPECT_EQ(BuiltinSceneNames(),
-            (std::set<std::string>{
-                "cloth", "cloth_box", "cloth_sphere", "drop", "fpu", "hanging_square", "impact",
-                "oscillator", "slope", "spring_pendulum", "squeeze", "two_squares",
-                // elastic solids (tests/energies/elasticity_test.cc)
-                "ball_drop_3d", "cantilever_2d", "squash_square", "twisted_bar_3d"}));
+  EXPECT_EQ(
+      BuiltinSceneNames(),
+      (std::set<std::string>{
+          "cloth", "cloth_box", "cloth_sphere", "drop", "fpu", "hanging_square", "impact",
+          "oscillator", "slope", "spring_pendulum", "squeeze", "two_squares",
+          // elastic solids (tests/energies/elasticity_test.cc)
+          "ball_drop_3d", "ball_impact_3d", "cantilever_2d", "squash_square", "twisted_bar_3d"}));
   SceneLoadOptions options;
   options.extra_effects = DefaultEffects().UserNames();  // contact, friction
   for (const std::string& name : BuiltinSceneNames()) {
