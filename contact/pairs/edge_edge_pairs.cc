@@ -57,15 +57,7 @@ void EdgeEdgePairs::ForEachCandidate(const double* a, const double* b, double gr
                                      const F& f) const {
   if (!active_) return;
   const auto& edges = context_.mesh->edges;
-  const int n = geometry_.num_coordinates();
-  if (candidates_.Matches(a, b, n, grow)) {
-    for (const Pair& pair : candidates_.candidates) f(pair);
-    return;
-  }
-  std::vector<Pair>& candidates = candidates_.candidates;
-  candidates.clear();
-  {
-    ScopedTimer timer(&broad_phase_seconds_);
+  auto find = [&](std::vector<Pair>* candidates) {
     SelfContactMesh::BuildTree(edges, a, b, grow, &bvh_);
     for (size_t e = 0; e < edges.size(); ++e) {
       Eigen::Vector3d lower, upper;
@@ -77,12 +69,11 @@ void EdgeEdgePairs::ForEachCandidate(const double* a, const double* b, double gr
         const auto& u = edges[e];
         const auto& v = edges[other];
         if (u[0] == v[0] || u[0] == v[1] || u[1] == v[0] || u[1] == v[1]) continue;
-        candidates.push_back(Pair{static_cast<int>(e), other});
+        candidates->push_back(Pair{static_cast<int>(e), other});
       }
     }
-  }
-  candidates_.Store(a, b, n, grow);
-  for (const Pair& pair : candidates) f(pair);
+  };
+  candidates_.ForEach(a, b, geometry_.num_coordinates(), grow, &broad_phase_seconds_, find, f);
 }
 
 bool EdgeEdgePairs::Extend(const CandidateRegion& region) {

@@ -55,15 +55,7 @@ void PointTrianglePairs::ForEachCandidate(const double* a, const double* b, doub
                                           const F& f) const {
   if (!active_) return;
   const CollisionMesh& mesh = *context_.mesh;
-  const int n = geometry_.num_coordinates();
-  if (candidates_.Matches(a, b, n, grow)) {
-    for (const Pair& pair : candidates_.candidates) f(pair);
-    return;
-  }
-  std::vector<Pair>& candidates = candidates_.candidates;
-  candidates.clear();
-  {
-    ScopedTimer timer(&broad_phase_seconds_);
+  auto find = [&](std::vector<Pair>* candidates) {
     SelfContactMesh::BuildTree(mesh.faces, a, b, grow, &bvh_);
     for (int node : mesh.nodes) {
       Eigen::Vector3d lower, upper;
@@ -73,12 +65,11 @@ void PointTrianglePairs::ForEachCandidate(const double* a, const double* b, doub
       for (int face : ids_) {
         const auto& v = mesh.faces[face];
         if (v[0] == node || v[1] == node || v[2] == node) continue;
-        candidates.push_back(Pair{node, face});
+        candidates->push_back(Pair{node, face});
       }
     }
-  }
-  candidates_.Store(a, b, n, grow);
-  for (const Pair& pair : candidates) f(pair);
+  };
+  candidates_.ForEach(a, b, geometry_.num_coordinates(), grow, &broad_phase_seconds_, find, f);
 }
 
 bool PointTrianglePairs::Extend(const CandidateRegion& region) {
