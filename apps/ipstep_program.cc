@@ -58,6 +58,10 @@ int Run(const EffectRegistry& registry) {
   std::unique_ptr<StatsWriter> stats;
   std::unique_ptr<IterationLogWriter> iterations;
   std::unique_ptr<FrameWriter> frames;
+  std::unique_ptr<PositionsFile> positions;
+  if (!FLAGS_positions.empty()) {
+    positions = std::make_unique<PositionsFile>(FLAGS_positions, "positions");
+  }
   if (!FLAGS_stats.empty()) {
     stats = std::make_unique<StatsWriter>(FLAGS_stats, "stats", sim.DiagnosticNames());
   }
@@ -113,7 +117,7 @@ int Run(const EffectRegistry& registry) {
       progress_shown = false;
       if (FLAGS_on_failure == "stop") {
         std::fprintf(stderr, "stopping (--on_failure=stop)\n");
-        if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "positions");
+        if (positions) positions->Write(sim.state());
         return kStepFailureExitCode;
       }
     }
@@ -127,7 +131,7 @@ int Run(const EffectRegistry& registry) {
     }
   }
   if (progress_shown) std::fprintf(stderr, "\n");
-  if (!FLAGS_positions.empty()) WritePositionsCsv(sim.state(), FLAGS_positions, "positions");
+  if (positions) positions->Write(sim.state());
   const EnergyReport e1 = sim.Energies();
   const int n = std::max(1, sim.steps());
   std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step\n",
