@@ -129,7 +129,7 @@ TEST_P(SelfContactScenes, NoIntersectionNoTouching) {
   ASSERT_LT(3 * mesh.faces.size(), 2 * mesh.edges.size());
   ASSERT_GT(3 * mesh.faces.size(), 2 * mesh.edges.size() - mesh.nodes.size());
   SimulationOptions options = testing::Options(c.integrator, c.optimizer, c.time_step, 1e-5);
-  options.max_substeps = 8;  // as the programs: a failed step is retried in substeps
+  options.max_substeps = 8;  // a failed step is retried in up to 8 substeps (the programs: 16)
   Simulation sim(scene, options);
   const double d_hat = scene.effect_parameters.at("contact").at("dhat").get<double>();
   int iterations = 0, self_steps = 0;
