@@ -16,6 +16,7 @@ const std::vector<FlagName>& FlagNames() {
       {"options: OptimizerOptions.line_search", "line_search"},
       {"options: OptimizerOptions.nonlinear_cg", "nonlinear_cg"},
       {"options: OptimizerOptions.lbfgs_rank", "lbfgs_rank"},
+      {"options: OptimizerOptions.hessian_projection", "hessian_projection"},
       // integrators/integrator.cc
       {"options: IntegratorOptions.name", "integrator"},
       {"options: IntegratorOptions.newmark_beta", "newmark_beta"},

@@ -48,6 +48,10 @@ DEFINE_bool(mass_scaled_coordinates, true,
 DEFINE_bool(precise_energy, true,
             "line-search optimizers: sum energies in extended precision (resolves smaller "
             "force imbalances; costs one extra energy pass per evaluation)");
+DEFINE_string(hessian_projection, "always",
+              "projected_newton: always (every term's Hessian projected to PSD) | "
+              "when_indefinite (the exact Hessian's step when the assembled sum is positive "
+              "definite, the projected one otherwise)");
 DEFINE_double(newmark_beta, 0.25, "Newmark beta, in [1e-3, 1] (integrators/newmark.h)");
 DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in [0.5, 1] (integrators/newmark.h)");
 DEFINE_double(energy_tolerance, 0.1,
@@ -64,9 +68,10 @@ namespace {
 // A flag of one optimiser family is an error with an optimiser of another.
 void RequireOptimizerFamily(const char* flag, OptimizerFamily family, Optimizer optimizer) {
   if (FlagIsDefault(flag) || FamilyOf(optimizer) == family) return;
-  const char* names = family == OptimizerFamily::kTrustRegion
-                          ? "newton, dogleg and gauss_newton"
-                          : "lbfgs, bfgs, ncg and gradient_descent";
+  const char* names = family == OptimizerFamily::kTrustRegion ? "newton, dogleg and gauss_newton"
+                      : family == OptimizerFamily::kLineSearch
+                          ? "lbfgs, bfgs, ncg and gradient_descent"
+                          : "projected_newton";
   throw InputError(
       "flag", std::string("--") + flag,
       std::string("applies to ") + names + ", not to --optimizer=" + OptimizerName(optimizer));
@@ -96,6 +101,7 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   p.nonlinear_cg = FLAGS_nonlinear_cg;
   p.mass_scaled_coordinates = FLAGS_mass_scaled_coordinates;
   p.precise_line_search_energy = FLAGS_precise_energy;
+  p.hessian_projection = ParseHessianProjection(FLAGS_hessian_projection);
   for (const char* flag : {"linear_solver", "sparse_library", "trust_region_radius", "num_threads",
                            "backtrack_rejected_steps"}) {
     RequireOptimizerFamily(flag, OptimizerFamily::kTrustRegion, p.optimizer);
@@ -104,6 +110,7 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
        {"line_search", "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates"}) {
     RequireOptimizerFamily(flag, OptimizerFamily::kLineSearch, p.optimizer);
   }
+  RequireOptimizerFamily("hessian_projection", OptimizerFamily::kEigenNewton, p.optimizer);
   // Flags whose unset value is a sentinel of the options (0 or -1: the
   // default) are used only when given, and then must be in range: an explicit
   // --dt=0 is an error, not the scene's time step.

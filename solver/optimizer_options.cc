@@ -112,6 +112,17 @@ Optimizer ParseOptimizer(const std::string& name) {
                    "unknown optimizer '" + name + "' (choose one of " + OptimizerNames() + ")");
 }
 
+const char* HessianProjectionName(HessianProjection projection) {
+  return projection == HessianProjection::kAlways ? "always" : "when_indefinite";
+}
+
+HessianProjection ParseHessianProjection(const std::string& name) {
+  if (name == "always") return HessianProjection::kAlways;
+  if (name == "when_indefinite") return HessianProjection::kWhenIndefinite;
+  throw InputError("options", "OptimizerOptions.hessian_projection",
+                   "unknown projection '" + name + "' (always or when_indefinite)");
+}
+
 OptimizerFamily FamilyOf(Optimizer optimizer) {
   switch (optimizer) {
     case Optimizer::kNewton:

@@ -54,6 +54,16 @@ bool IsTrustRegion(Optimizer optimizer);
 // dogleg, projected_newton): core/term_hessian.h.
 bool UsesNewtonModel(Optimizer optimizer);
 
+// projected_newton's model (solver/projected_newton_solver.h): every term's
+// Hessian projected to positive semi-definite (the default), or the exact
+// Hessian whenever the assembled sum is positive definite and the projected
+// one only otherwise (Longva et al. 2023, "Pitfalls of projection").
+enum class HessianProjection { kAlways, kWhenIndefinite };
+
+const char* HessianProjectionName(HessianProjection projection);  // "always", "when_indefinite"
+// Throws InputError naming the option OptimizerOptions.hessian_projection.
+HessianProjection ParseHessianProjection(const std::string& name);
+
 struct OptimizerOptions {
   Optimizer optimizer = Optimizer::kNewton;
 
@@ -82,6 +92,9 @@ struct OptimizerOptions {
   // Line-search optimisers compare energies summed in extended precision
   // (solver/first_order_potential.h) unless false.
   bool precise_line_search_energy = true;
+  // projected_newton: which Newton model each iteration uses (see
+  // HessianProjection).
+  HessianProjection hessian_projection = HessianProjection::kAlways;
 };
 
 // The Ceres options for the trust-region optimisers (newton, dogleg), validated

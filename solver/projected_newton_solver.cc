@@ -36,6 +36,7 @@ ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, co
   tolerance_ = options.tolerance;
   max_iterations_ = options.max_iterations > 0 ? options.max_iterations : 100;
   time_limit_ = options.time_limit > 0.0 ? options.time_limit : 1e9;
+  projection_ = options.hessian_projection;
   BuildStructure();
 }
 
@@ -94,7 +95,7 @@ void ProjectedNewtonSolver::BuildStructure() {
 }
 
 bool ProjectedNewtonSolver::AddTermHessian(const Term& term, const double* x, double weight,
-                                           const int* slots) {
+                                           const int* slots, bool project) {
   const int dim = state_->dimension;
   const int blocks = static_cast<int>(term.nodes.size());
   for (int b = 0; b < blocks; ++b) parameters_[b] = x + dim * term.nodes[b];
@@ -102,7 +103,7 @@ bool ProjectedNewtonSolver::AddTermHessian(const Term& term, const double* x, do
   // Gauss-Newton models are PSD as they are (rho' J^T J, rho'' part only where
   // positive); the others are projected.
   const TermMatrix* h = &model_.hessian;
-  if (!term.gauss_newton_model) {
+  if (!term.gauss_newton_model && project) {
     ProjectHessian(model_, &projected_);
     local_hessian_.noalias() =
         projected_.vectors * projected_.values.asDiagonal() * projected_.vectors.transpose();
@@ -127,7 +128,7 @@ bool ProjectedNewtonSolver::AddTermHessian(const Term& term, const double* x, do
   return true;
 }
 
-bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x) {
+bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, bool project) {
   if (built_version_ != potential_->structure_version()) BuildStructure();
   const auto start = Clock::now();
   std::fill(hessian_.valuePtr(), hessian_.valuePtr() + hessian_.nonZeros(), 0.0);
@@ -137,7 +138,7 @@ bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x) {
   for (size_t t = 0; t < terms.size() && ok; ++t) {
     const double weight = TermWeight(terms[t].kind, context);
     if (weight == 0.0) continue;
-    ok = AddTermHessian(terms[t], x.data(), weight, slots_.data() + slot_offset_[t]);
+    ok = AddTermHessian(terms[t], x.data(), weight, slots_.data() + slot_offset_[t], project);
   }
   timings_.hessian += Since(start);
   return ok;
@@ -152,10 +153,6 @@ bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
     timings_.analyze += Since(start);
   }
   const auto start = Clock::now();
-  const int dim = state_->dimension;
-  for (int d = 0; d < state_->num_dofs(); ++d) {
-    if (free_index_[d] >= 0) free_rhs_[free_index_[d]] = -gradient[d];
-  }
   // PSD projection leaves H singular only without inertia (quasi-static, free
   // rigid modes): then a growing multiple of the identity is added.
   double max_diagonal = 0.0;
@@ -171,21 +168,40 @@ bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
     ldlt_.factorize(hessian_);
     ok = ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0.0;
   }
-  if (ok) {
-    free_step_ = ldlt_.solve(free_rhs_);
-    ok = free_step_.allFinite();
-  }
-  direction->setZero(state_->num_dofs());
-  if (ok) {
-    for (int i = 0; i < state_->num_nodes(); ++i) {
-      for (int k = 0; k < dim; ++k) {
-        const int f = free_index_[dim * i + k];
-        if (f >= 0) (*direction)[dim * i + k] = free_step_[f];
-      }
-    }
-  }
+  ok = ok && SolveFactorised(gradient, direction);
+  if (!ok) direction->setZero(state_->num_dofs());
   timings_.factorize += Since(start);
   return ok;
+}
+
+bool ProjectedNewtonSolver::DefiniteDirection(const Eigen::VectorXd& gradient,
+                                              Eigen::VectorXd* direction) {
+  if (!analyzed_) {
+    const auto start = Clock::now();
+    ldlt_.analyzePattern(hessian_);
+    analyzed_ = true;
+    timings_.analyze += Since(start);
+  }
+  const auto start = Clock::now();
+  ldlt_.factorize(hessian_);
+  const bool ok = ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0.0 &&
+                  SolveFactorised(gradient, direction);
+  timings_.factorize += Since(start);
+  return ok;
+}
+
+bool ProjectedNewtonSolver::SolveFactorised(const Eigen::VectorXd& gradient,
+                                            Eigen::VectorXd* direction) {
+  for (int d = 0; d < state_->num_dofs(); ++d) {
+    if (free_index_[d] >= 0) free_rhs_[free_index_[d]] = -gradient[d];
+  }
+  free_step_ = ldlt_.solve(free_rhs_);
+  if (!free_step_.allFinite()) return false;
+  direction->setZero(state_->num_dofs());
+  for (int d = 0; d < state_->num_dofs(); ++d) {
+    if (free_index_[d] >= 0) (*direction)[d] = free_step_[free_index_[d]];
+  }
+  return true;
 }
 
 StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
@@ -231,14 +247,27 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       result.status = "time limit: " + std::to_string(time_limit_) + " s";
       break;
     }
-    if (!AssembleHessian(*x)) {
-      result.status = "Hessian cannot be evaluated";
-      break;
+    // The exact Hessian's step where the sum is definite (kWhenIndefinite),
+    // else the projected model's.
+    bool exact = false;
+    if (projection_ == HessianProjection::kWhenIndefinite) {
+      if (!AssembleHessian(*x, /*project=*/false)) {
+        result.status = "Hessian cannot be evaluated";
+        break;
+      }
+      exact = DefiniteDirection(gradient_, &direction);
     }
-    if (!ComputeDirection(gradient_, &direction)) {
-      result.status = "factorisation failed";
-      break;
+    if (!exact) {
+      if (!AssembleHessian(*x)) {
+        result.status = "Hessian cannot be evaluated";
+        break;
+      }
+      if (!ComputeDirection(gradient_, &direction)) {
+        result.status = "factorisation failed";
+        break;
+      }
     }
+    ++(exact ? exact_directions_ : projected_directions_);
     ++result.iterations;
     start = Clock::now();
     double slope = gradient_.dot(direction);

@@ -17,7 +17,17 @@
 // MaxStepSize. A singular matrix (quasi-static, free rigid modes) gets a
 // growing multiple of the identity on its diagonal.
 //
-// It is the same model Ceres's newton and dogleg receive
+// With OptimizerOptions::hessian_projection = kWhenIndefinite, each iteration
+// first assembles the exact Hessian (terms unprojected; Gauss-Newton terms
+// keep their model) and factorises it once: if LDL^T finds it positive
+// definite (every pivot > 0) its Newton step is taken, else the projected
+// model is assembled and used as above. Per-term projection discards negative
+// curvature that the sum (inertia M/h^2 plus all terms) does not have, and
+// then converges only linearly (compressed springs, buckling strips); the
+// exact step keeps Newton's quadratic convergence wherever the sum is
+// definite. Measured in docs/benchmarks.md ("Hessian projection").
+//
+// The projected model is the same model Ceres's newton and dogleg receive
 // (solver/newton_model_cost.h): the two differ in globalisation (trust region
 // against line search) and linear algebra (CXSparse Cholesky of J^T J against
 // Eigen's LDL^T of the assembled matrix), not in the Newton model.
@@ -47,32 +57,48 @@ class ProjectedNewtonSolver : public StepSolver {
     double line_search = 0.0;
   };
 
-  // Uses options.tolerance, max_iterations and time_limit. Throws InputError
+  // Uses options.tolerance, max_iterations, time_limit and hessian_projection.
+  // Throws InputError
   // for invalid values.
   ProjectedNewtonSolver(IncrementalPotential* potential, const State* state,
                         const OptimizerOptions& options);
   StepSolveResult Solve(Eigen::VectorXd* x) override;
 
-  // Assembles the projected Hessian over the free DOFs at full positions x
-  // (lower triangle). False if a term cannot be evaluated. Public for tests and
-  // micro-benchmarks.
-  bool AssembleHessian(const Eigen::VectorXd& x);
+  // Assembles the projected (project = false: exact) Hessian over the free
+  // DOFs at full positions x (lower triangle). False if a term cannot be
+  // evaluated. Public for tests and micro-benchmarks.
+  bool AssembleHessian(const Eigen::VectorXd& x, bool project = true);
   const Eigen::SparseMatrix<double>& hessian() const { return hessian_; }
   // Free DOF index of each DOF (-1 for constrained ones).
   const std::vector<int>& free_index() const { return free_index_; }
   const Timings& timings() const { return timings_; }
+  // Iterations whose direction came from the exact Hessian (kWhenIndefinite)
+  // and from the projected one, over all solves.
+  long exact_directions() const { return exact_directions_; }
+  long projected_directions() const { return projected_directions_; }
 
  private:
   void BuildStructure();
-  // Adds the term's projected model Hessian at x into hessian_ through its slots.
-  bool AddTermHessian(const Term& term, const double* x, double weight, const int* slots);
+  // Adds the term's projected (or exact) model Hessian at x into hessian_
+  // through its slots.
+  bool AddTermHessian(const Term& term, const double* x, double weight, const int* slots,
+                      bool project);
   // Factorises the Hessian (regularising if needed) and solves H p = -g.
   bool ComputeDirection(const Eigen::VectorXd& gradient, Eigen::VectorXd* direction);
+  // Factorises the Hessian as it is; if it is positive definite, solves
+  // H p = -g and returns true.
+  bool DefiniteDirection(const Eigen::VectorXd& gradient, Eigen::VectorXd* direction);
+  // The factorisation's solve for -g, scattered to every DOF (0 on
+  // constrained ones). False if not finite.
+  bool SolveFactorised(const Eigen::VectorXd& gradient, Eigen::VectorXd* direction);
 
   IncrementalPotential* potential_;
   const State* state_;
   double tolerance_;
   int max_iterations_;
+  HessianProjection projection_;
+  long exact_directions_ = 0;
+  long projected_directions_ = 0;
   double time_limit_;
   Timings timings_;
 

@@ -105,6 +105,11 @@ TEST_F(ProgramInput, LibraryErrorsNameTheFlag) {
       {"--grid_size=50", "ipstep: error: flag: --grid_size: scene "},
       {"--scene=cloth_sphere --grid_size=100 --optimizer=bfgs --steps=1",
        "ipstep: error: flag: --optimizer=bfgs: BFGS stores a dense matrix"},
+      {"--optimizer=projected_newton --hessian_projection=sometimes",
+       "ipstep: error: flag: --hessian_projection: unknown projection 'sometimes'"},
+      {"--hessian_projection=when_indefinite",
+       "ipstep: error: flag: --hessian_projection: applies to projected_newton, not to "
+       "--optimizer=newton"},
       {"--stats=/nonexistent_dir/x.csv",
        "ipstep: error: flag: --stats: cannot write '/nonexistent_dir/x.csv'"},
       // Opened before the run: the error comes before any report.
