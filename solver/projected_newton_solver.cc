@@ -144,14 +144,22 @@ bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, bool proje
   return ok;
 }
 
+void ProjectedNewtonSolver::EnsureAnalyzed() {
+  if (analyzed_) return;
+  const auto start = Clock::now();
+  ldlt_.analyzePattern(hessian_);
+  analyzed_ = true;
+  timings_.analyze += Since(start);
+}
+
+bool ProjectedNewtonSolver::FactorizePositiveDefinite() {
+  ldlt_.factorize(hessian_);
+  return ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0.0;
+}
+
 bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
                                              Eigen::VectorXd* direction) {
-  if (!analyzed_) {
-    const auto start = Clock::now();
-    ldlt_.analyzePattern(hessian_);
-    analyzed_ = true;
-    timings_.analyze += Since(start);
-  }
+  EnsureAnalyzed();
   const auto start = Clock::now();
   // PSD projection leaves H singular only without inertia (quasi-static, free
   // rigid modes): then a growing multiple of the identity is added.
@@ -165,8 +173,7 @@ bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
       for (int slot : diagonal_slots_) hessian_.valuePtr()[slot] += next - shift;
       shift = next;
     }
-    ldlt_.factorize(hessian_);
-    ok = ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0.0;
+    ok = FactorizePositiveDefinite();
   }
   ok = ok && SolveFactorised(gradient, direction);
   if (!ok) direction->setZero(state_->num_dofs());
@@ -176,16 +183,9 @@ bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
 
 bool ProjectedNewtonSolver::DefiniteDirection(const Eigen::VectorXd& gradient,
                                               Eigen::VectorXd* direction) {
-  if (!analyzed_) {
-    const auto start = Clock::now();
-    ldlt_.analyzePattern(hessian_);
-    analyzed_ = true;
-    timings_.analyze += Since(start);
-  }
+  EnsureAnalyzed();
   const auto start = Clock::now();
-  ldlt_.factorize(hessian_);
-  const bool ok = ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0.0 &&
-                  SolveFactorised(gradient, direction);
+  const bool ok = FactorizePositiveDefinite() && SolveFactorised(gradient, direction);
   timings_.factorize += Since(start);
   return ok;
 }

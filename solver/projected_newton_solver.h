@@ -83,6 +83,11 @@ class ProjectedNewtonSolver : public StepSolver {
   // through its slots.
   bool AddTermHessian(const Term& term, const double* x, double weight, const int* slots,
                       bool project);
+  // The symbolic analysis of hessian_'s pattern, once per structure.
+  void EnsureAnalyzed();
+  // Factorises hessian_ as it is; true if LDL^T found it positive definite
+  // (every pivot > 0).
+  bool FactorizePositiveDefinite();
   // Factorises the Hessian (regularising if needed) and solves H p = -g.
   bool ComputeDirection(const Eigen::VectorXd& gradient, Eigen::VectorXd* direction);
   // Factorises the Hessian as it is; if it is positive definite, solves
