@@ -21,12 +21,15 @@ bool RotationVariantSvd(const Eigen::Matrix<double, kDim, kDim>& F,
   // Square: no QR preconditioner needed.
   const Eigen::JacobiSVD<Eigen::Matrix<double, kDim, kDim>, Eigen::NoQRPreconditioner> svd(
       F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // (Not Success only for a non-finite F, which leaves the factors unset.)
   if (svd.info() != Eigen::Success) return false;
   *U = svd.matrixU();
   *V = svd.matrixV();
   *sigma = svd.singularValues();
-  // det U, det V = +-1. If both are -1, negating the same column of both keeps
-  // U diag(sigma) V^T.
+  // det U det V = sign(det F) = 1 (sigma >= 0). If both are -1, negating the
+  // same column of both keeps U diag(sigma) V^T and makes them rotations (the
+  // modes need only U diag(sigma) V^T = F with sigma > 0; rotations are the
+  // paper's convention).
   const bool flip_u = U->determinant() < 0.0, flip_v = V->determinant() < 0.0;
   if (flip_u != flip_v) return false;
   if (flip_u) {
