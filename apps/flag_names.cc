@@ -13,6 +13,7 @@ const std::vector<FlagName>& FlagNames() {
       {"options: OptimizerOptions.initial_trust_region_radius", "trust_region_radius"},
       {"options: OptimizerOptions.linear_solver", "linear_solver"},
       {"options: OptimizerOptions.sparse_library", "sparse_library"},
+      {"options: OptimizerOptions.linear_solver_ordering", "linear_solver_ordering"},
       {"options: OptimizerOptions.line_search", "line_search"},
       {"options: OptimizerOptions.nonlinear_cg", "nonlinear_cg"},
       {"options: OptimizerOptions.lbfgs_rank", "lbfgs_rank"},

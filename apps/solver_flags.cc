@@ -28,9 +28,14 @@ DEFINE_double(time_limit, 0.0, "Wall-time limit per step [s], in (0, 1e9]; defau
 DEFINE_int32(num_threads, 1, "Ceres threads (newton, dogleg, gauss_newton), in [1, 256]");
 DEFINE_string(linear_solver, "",
               "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
-DEFINE_string(
-    sparse_library, "",
-    "newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | EIGEN_SPARSE (default CX_SPARSE)");
+DEFINE_string(sparse_library, "",
+              "Sparse Cholesky library: newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | "
+              "EIGEN_SPARSE (default CX_SPARSE); projected_newton: SUITE_SPARSE (CHOLMOD "
+              "supernodal) | EIGEN_SPARSE (SimplicialLDLT) (default SUITE_SPARSE)");
+DEFINE_string(linear_solver_ordering, "",
+              "newton/dogleg/gauss_newton/projected_newton: fill-reducing ordering of the sparse "
+              "Cholesky, AMD | NESDIS (nested dissection, METIS); default: NESDIS for 3D solids "
+              "of 20000 free DOFs or more, AMD otherwise");
 DEFINE_double(trust_region_radius, 0.0,
               "newton/dogleg/gauss_newton: initial trust-region radius, in [1e-12, 1e20]; "
               "default: newton and gauss_newton 1e16, dogleg 1e4");
@@ -68,6 +73,10 @@ namespace {
 // A flag of one optimiser family is an error with an optimiser of another.
 void RequireOptimizerFamily(const char* flag, OptimizerFamily family, Optimizer optimizer) {
   if (FlagIsDefault(flag) || FamilyOf(optimizer) == family) return;
+  if (FamilyOf(optimizer) == OptimizerFamily::kEigenNewton &&
+      (std::string(flag) == "sparse_library" || std::string(flag) == "linear_solver_ordering")) {
+    return;  // the sparse Cholesky's flags apply to projected_newton too
+  }
   const char* names = family == OptimizerFamily::kTrustRegion ? "newton, dogleg and gauss_newton"
                       : family == OptimizerFamily::kLineSearch
                           ? "lbfgs, bfgs, ncg and gradient_descent"
@@ -96,14 +105,15 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   p.tolerance = FLAGS_tolerance;
   p.linear_solver = FLAGS_linear_solver;
   p.sparse_library = FLAGS_sparse_library;
+  p.linear_solver_ordering = FLAGS_linear_solver_ordering;
   p.backtrack_rejected_steps = FLAGS_backtrack_rejected_steps;
   p.line_search = FLAGS_line_search;
   p.nonlinear_cg = FLAGS_nonlinear_cg;
   p.mass_scaled_coordinates = FLAGS_mass_scaled_coordinates;
   p.precise_line_search_energy = FLAGS_precise_energy;
   p.hessian_projection = ParseHessianProjection(FLAGS_hessian_projection);
-  for (const char* flag : {"linear_solver", "sparse_library", "trust_region_radius", "num_threads",
-                           "backtrack_rejected_steps"}) {
+  for (const char* flag : {"linear_solver", "sparse_library", "linear_solver_ordering",
+                           "trust_region_radius", "num_threads", "backtrack_rejected_steps"}) {
     RequireOptimizerFamily(flag, OptimizerFamily::kTrustRegion, p.optimizer);
   }
   for (const char* flag :

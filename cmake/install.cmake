@@ -6,7 +6,7 @@ include(CMakePackageConfigHelpers)
 # and ipstep::flags (the programs as library calls, apps/programs.h, with their
 # flags).
 get_property(ipstep_libraries GLOBAL PROPERTY IPSTEP_LIBRARIES)
-install(TARGETS ipstep ${ipstep_libraries} ipstep_flags EXPORT ipstepTargets
+install(TARGETS ipstep ipstep_blas ${ipstep_libraries} ipstep_flags EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS ipstep_app ipstep_compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

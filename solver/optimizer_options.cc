@@ -145,6 +145,24 @@ bool UsesNewtonModel(Optimizer optimizer) {
          optimizer == Optimizer::kProjectedNewton;
 }
 
+SparseLibrary ProjectedNewtonSparseLibrary(const OptimizerOptions& o) {
+  if (o.sparse_library.empty() || o.sparse_library == "SUITE_SPARSE") {
+    return SparseLibrary::kSuiteSparse;
+  }
+  if (o.sparse_library == "EIGEN_SPARSE") return SparseLibrary::kEigen;
+  throw InputError("options", "OptimizerOptions.sparse_library",
+                   "projected_newton uses SUITE_SPARSE (CHOLMOD) or EIGEN_SPARSE, not '" +
+                       o.sparse_library + "'");
+}
+
+FillOrdering ParseFillOrdering(const std::string& name) {
+  if (name.empty()) return FillOrdering::kAutomatic;
+  if (name == "AMD") return FillOrdering::kAmd;
+  if (name == "NESDIS") return FillOrdering::kNestedDissection;
+  throw InputError("options", "OptimizerOptions.linear_solver_ordering",
+                   "unknown ordering '" + name + "' (AMD or NESDIS)");
+}
+
 // 0 (and for the radius any value <= 0) still means "the default" here; the
 // programs reject an explicit 0 at the flags layer (apps/solver_flags.cc).
 void ValidateOptimizerOptions(const OptimizerOptions& o) {

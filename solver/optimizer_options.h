@@ -26,6 +26,8 @@
 #include <ceres/gradient_problem_solver.h>
 #include <ceres/solver.h>
 
+#include "solver/sparse_cholesky.h"
+
 namespace ipstep {
 
 enum class Optimizer {
@@ -75,8 +77,16 @@ struct OptimizerOptions {
                             // lbfgs, bfgs 5000; ncg 20000; gradient_descent 50000
   double time_limit = 0.0;  // seconds per step; default 1e9 (none)
   int num_threads = 1;
-  std::string linear_solver;   // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR
-  std::string sparse_library;  // SUITE_SPARSE, CX_SPARSE, EIGEN_SPARSE
+  std::string linear_solver;  // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR
+  // Sparse Cholesky library: SUITE_SPARSE (the default), CX_SPARSE or
+  // EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD supernodal) or
+  // EIGEN_SPARSE (SimplicialLDLT), solver/sparse_cholesky.h.
+  std::string sparse_library;
+  // Fill-reducing ordering of the sparse Cholesky: AMD or NESDIS (nested
+  // dissection); empty: chosen by the matrix's dimension and size
+  // (ChooseOrdering, solver/sparse_cholesky.h). newton, dogleg,
+  // gauss_newton: Ceres's linear_solver_ordering_type.
+  std::string linear_solver_ordering;
   double initial_trust_region_radius = 0.0;
   // newton, dogleg: when Ceres rejects a trial step (a step filter refused it,
   // or the energy rose), backtrack along it as a line search would and
@@ -103,6 +113,12 @@ struct OptimizerOptions {
 ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& options);
 // The same for the line-search optimisers.
 ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& options);
+// projected_newton's library from options.sparse_library; throws InputError
+// naming OptimizerOptions.sparse_library for a library it cannot use.
+SparseLibrary ProjectedNewtonSparseLibrary(const OptimizerOptions& options);
+// "" (automatic), "AMD" or "NESDIS"; throws InputError naming
+// OptimizerOptions.linear_solver_ordering otherwise.
+FillOrdering ParseFillOrdering(const std::string& name);
 // Validates the numeric fields (tolerance, limits): throws InputError naming the
 // field.
 void ValidateOptimizerOptions(const OptimizerOptions& options);

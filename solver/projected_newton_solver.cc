@@ -8,6 +8,7 @@
 
 #include "core/input_error.h"
 #include "core/stopping_rule.h"
+#include "solver/node_ordering.h"
 
 namespace ipstep {
 namespace {
@@ -37,6 +38,8 @@ ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, co
   max_iterations_ = options.max_iterations > 0 ? options.max_iterations : 100;
   time_limit_ = options.time_limit > 0.0 ? options.time_limit : 1e9;
   projection_ = options.hessian_projection;
+  library_ = ProjectedNewtonSparseLibrary(options);
+  ordering_ = ParseFillOrdering(options.linear_solver_ordering);
   BuildStructure();
 }
 
@@ -105,8 +108,8 @@ bool ProjectedNewtonSolver::AddTermHessian(const Term& term, const double* x, do
   const TermMatrix* h = &model_.hessian;
   if (!term.gauss_newton_model && project) {
     ProjectHessian(model_, &projected_);
-    local_hessian_.noalias() =
-        projected_.vectors * projected_.values.asDiagonal() * projected_.vectors.transpose();
+    scaled_.noalias() = projected_.vectors * projected_.values.asDiagonal();
+    local_hessian_.noalias() = scaled_ * projected_.vectors.transpose();
     h = &local_hessian_;
   }
   // Pair-difference terms: the full Hessian is [[K, -K], [-K, K]].
@@ -147,14 +150,31 @@ bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, bool proje
 void ProjectedNewtonSolver::EnsureAnalyzed() {
   if (analyzed_) return;
   const auto start = Clock::now();
-  ldlt_.analyzePattern(hessian_);
-  analyzed_ = true;
+  const FillOrdering ordering = ordering_ == FillOrdering::kAutomatic
+                                    ? ChooseOrdering(state_->dimension, num_free_)
+                                    : ordering_;
+  if (!cholesky_ || cholesky_ordering_ != ordering) {
+    cholesky_ = SparseCholesky::Create(library_, ordering);
+    cholesky_ordering_ = ordering;
+  }
+  // Nested dissection of the nodes, expanded to their free unknowns
+  // (solver/node_ordering.h); METIS on the unknowns if it fails.
+  std::vector<int> permutation;
+  if (ordering == FillOrdering::kNestedDissection && library_ == SparseLibrary::kSuiteSparse) {
+    const int dim = state_->dimension;
+    for (int node : NestedDissectionNodeOrder(*potential_, *state_)) {
+      for (int k = 0; k < dim; ++k) {
+        if (free_index_[dim * node + k] >= 0) permutation.push_back(free_index_[dim * node + k]);
+      }
+    }
+    if (static_cast<int>(permutation.size()) != num_free_) permutation.clear();
+  }
+  analyzed_ = cholesky_->Analyze(hessian_, permutation.empty() ? nullptr : &permutation);
   timings_.analyze += Since(start);
 }
 
 bool ProjectedNewtonSolver::FactorizePositiveDefinite() {
-  ldlt_.factorize(hessian_);
-  return ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0.0;
+  return analyzed_ && cholesky_->Factorize(hessian_) == SparseCholesky::Result::kSuccess;
 }
 
 bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
@@ -195,8 +215,7 @@ bool ProjectedNewtonSolver::SolveFactorised(const Eigen::VectorXd& gradient,
   for (int d = 0; d < state_->num_dofs(); ++d) {
     if (free_index_[d] >= 0) free_rhs_[free_index_[d]] = -gradient[d];
   }
-  free_step_ = ldlt_.solve(free_rhs_);
-  if (!free_step_.allFinite()) return false;
+  if (!cholesky_->Solve(free_rhs_, &free_step_)) return false;
   direction->setZero(state_->num_dofs());
   for (int d = 0; d < state_->num_dofs(); ++d) {
     if (free_index_[d] >= 0) (*direction)[d] = free_step_[free_index_[d]];

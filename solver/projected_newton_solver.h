@@ -35,13 +35,15 @@
 
 #include <vector>
 
+#include <memory>
+
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include "core/incremental_potential.h"
 #include "core/state.h"
 #include "core/term_hessian.h"
+#include "solver/sparse_cholesky.h"
 #include "solver/step_solver.h"
 
 namespace ipstep {
@@ -85,8 +87,8 @@ class ProjectedNewtonSolver : public StepSolver {
                       bool project);
   // The symbolic analysis of hessian_'s pattern, once per structure.
   void EnsureAnalyzed();
-  // Factorises hessian_ as it is; true if LDL^T found it positive definite
-  // (every pivot > 0).
+  // Factorises hessian_ as it is; true if it is positive definite (the
+  // Cholesky factorisation succeeded).
   bool FactorizePositiveDefinite();
   // Factorises the Hessian (regularising if needed) and solves H p = -g.
   bool ComputeDirection(const Eigen::VectorXd& gradient, Eigen::VectorXd* direction);
@@ -116,7 +118,10 @@ class ProjectedNewtonSolver : public StepSolver {
   std::vector<int> slots_;
   std::vector<int> diagonal_slots_;
   Eigen::SparseMatrix<double> hessian_;  // column-major, lower triangle
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+  SparseLibrary library_ = SparseLibrary::kSuiteSparse;
+  FillOrdering ordering_ = FillOrdering::kAutomatic;
+  std::unique_ptr<SparseCholesky> cholesky_;
+  FillOrdering cholesky_ordering_ = FillOrdering::kAutomatic;
   bool analyzed_ = false;
 
   // Scratch.
@@ -124,6 +129,7 @@ class ProjectedNewtonSolver : public StepSolver {
   TermModel model_;
   ProjectedHessian projected_;
   TermMatrix local_hessian_;
+  TermMatrix scaled_;
   std::vector<const double*> parameters_;
   Eigen::VectorXd gradient_;
   Eigen::VectorXd trial_;

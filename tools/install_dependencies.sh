@@ -7,6 +7,9 @@ packages=(
   libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev
   libgmsh-dev  # elastic solids: meshing and .msh files (mesh/gmsh_mesh.h)
+  # projected_newton's sparse Cholesky: CHOLMOD (SuiteSparse) with METIS, on
+  # OpenBLAS (solver/sparse_cholesky.cc)
+  libsuitesparse-dev libmetis-dev libopenblas-serial-dev
   # bench/plot_benchmarks.py (matplotlib), tools/animate.py (matplotlib, Pillow
   # for GIFs): run them with /usr/bin/python3, which has these packages.
   python3 python3-matplotlib python3-pil

@@ -12,6 +12,7 @@
 #include <ceres/problem.h>
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
 
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
