@@ -115,7 +115,9 @@ bool IncrementalPotential::EvaluatePreciseEnergy(const double* x, long double* e
       for (int r = 0; r < m; ++r) s += static_cast<long double>(residuals_[r]) * residuals_[r];
     }
     long double e = s;
-    if (term.loss) {
+    if (term.precise_loss) {
+      e = term.precise_loss(s);
+    } else if (term.loss) {
       double rho[3];
       term.loss->Evaluate(static_cast<double>(s), rho);
       e = rho[0];

@@ -32,6 +32,14 @@ namespace ipstep {
 using ResidualCurvature =
     std::function<bool(const double* const* x, const double* c, double* curvature)>;
 
+// A term's energy, gradient and Hessian in closed form, through reduced
+// coordinates y = B x (an elastic element's deformation gradient): fills the
+// UNWEIGHTED ReducedModel (core/term_hessian.h) at x; the eigensystem only
+// when `hessian` is true. False if it cannot be evaluated at x.
+struct ReducedModel;
+using ReducedModelFunction =
+    std::function<bool(const double* const* x, bool hessian, ReducedModel* model)>;
+
 enum class TermKind {
   kInertia,      // 1/2 |x - x_tilde|_M^2, weight w_I
   kPotential,    // U(x), weight w_U (springs, external loads, barriers, ...)
@@ -59,6 +67,9 @@ struct Term {
   // set for autodiff terms. Line searches compare energies whose differences near
   // convergence are far below double round-off of the energies themselves.
   std::function<bool(const double* const* x, long double* residuals)> precise_residual;
+  // Optional: the loss rho(s) in extended precision, for the same energies
+  // (a loss evaluated in double limits them to its own round-off).
+  std::function<long double(long double s)> precise_loss;
 
   // Second-order information for the Newton models (core/term_hessian.h).
   // Gauss-Newton (rho' J^T J + 2 rho'' (J^T r)(J^T r)^T) is this term's model:
@@ -71,6 +82,11 @@ struct Term {
   bool pair_difference = false;
   // Analytic second derivatives; empty: central differences of the Jacobian.
   ResidualCurvature curvature;
+  // Optional: the Newton model in closed form (then `curvature` is not used
+  // for it): the energy is still defined by `cost` and `loss`, and the two
+  // must agree (tested per term type).
+  ReducedModelFunction reduced_model;
+  int reduced_size = 0;  // k, the reduced coordinates of reduced_model
 };
 
 // Decorator that multiplies residuals and Jacobians by sqrt(weight), the weight

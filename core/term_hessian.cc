@@ -27,6 +27,48 @@ int ModelSize(const Term& term, int dimension) {
   return term.pair_difference ? dimension : dimension * static_cast<int>(term.nodes.size());
 }
 
+int ModelRows(const Term& term, int dimension) {
+  return term.reduced_model ? term.reduced_size : ModelSize(term, dimension);
+}
+
+bool TermModelEvaluator::EvaluateEnergy(const Term& term, double weight, const double* const* x,
+                                        TermModel* model) {
+  const int m = term.cost->num_residuals();
+  if (static_cast<int>(residuals_.size()) < m) {
+    residuals_.resize(m);
+    residuals_fd_.resize(m);
+  }
+  if (!term.cost->Evaluate(x, residuals_.data(), nullptr)) return false;
+  double s = 0.0;
+  for (int r = 0; r < m; ++r) s += residuals_[r] * residuals_[r];
+  double rho[3] = {s, 1.0, 0.0};
+  if (term.loss) term.loss->Evaluate(s, rho);
+  model->energy = 0.5 * weight * rho[0];
+  return std::isfinite(model->energy);
+}
+
+bool TermModelEvaluator::EvaluateReduced(const Term& term, int dimension, double weight,
+                                         const double* const* x, TermModel* model) {
+  // The energy as the term defines it (cost and loss), so that trial points
+  // (energy only) and models compare the same numbers.
+  if (!EvaluateEnergy(term, weight, x, model)) return false;
+  if (!term.reduced_model(x, true, &reduced_)) return false;
+  const int n = dimension * static_cast<int>(term.nodes.size());
+  model->gradient.noalias() = weight * (reduced_.map.transpose() * reduced_.gradient);
+  model->reduced = true;
+  model->curvature_dropped = false;
+  model->gauss_newton_scale = 0.0;
+  // Directions B^T Q (n x k): the Hessian is directions diag(w l) directions^T.
+  model->reduced_directions.noalias() = reduced_.map.transpose() * reduced_.eigenvectors;
+  model->reduced_values = weight * reduced_.eigenvalues;
+  model->reduced_coordinates.noalias() =
+      weight * (reduced_.eigenvectors.transpose() * reduced_.gradient);
+  scaled_.noalias() = model->reduced_directions * model->reduced_values.asDiagonal();
+  model->hessian.resize(n, n);
+  model->hessian.noalias() = scaled_ * model->reduced_directions.transpose();
+  return model->gradient.allFinite() && model->hessian.allFinite();
+}
+
 bool TermModelEvaluator::EvaluateJacobian(const Term& term, int dimension, bool pair,
                                           double* residuals, std::vector<double>* jacobian) {
   const int blocks = static_cast<int>(term.nodes.size());
@@ -54,20 +96,14 @@ bool TermModelEvaluator::EvaluateJacobian(const Term& term, int dimension, bool 
 
 bool TermModelEvaluator::Evaluate(const Term& term, int dimension, double weight,
                                   const double* const* x, bool hessian, TermModel* model) {
+  model->reduced = false;
+  if (!hessian) return EvaluateEnergy(term, weight, x, model);
+  if (term.reduced_model) return EvaluateReduced(term, dimension, weight, x, model);
   const int blocks = static_cast<int>(term.nodes.size());
   const int m = term.cost->num_residuals();
   if (static_cast<int>(residuals_.size()) < m) {
     residuals_.resize(m);
     residuals_fd_.resize(m);
-  }
-  if (!hessian) {
-    if (!term.cost->Evaluate(x, residuals_.data(), nullptr)) return false;
-    double s = 0.0;
-    for (int r = 0; r < m; ++r) s += residuals_[r] * residuals_[r];
-    double rho[3] = {s, 1.0, 0.0};
-    if (term.loss) term.loss->Evaluate(s, rho);
-    model->energy = 0.5 * weight * rho[0];
-    return std::isfinite(model->energy);
   }
   // Local copies of the parameters: finite differences perturb them.
   const int nt = dimension * blocks;
@@ -131,38 +167,49 @@ bool TermModelEvaluator::Evaluate(const Term& term, int dimension, double weight
   return std::isfinite(model->energy) && model->gradient.allFinite() && model->hessian.allFinite();
 }
 
-void ProjectHessian(const TermModel& model, ProjectedHessian* projected) {
-  const TermMatrix& h = model.hessian;
-  switch (h.rows()) {
-    case 1:
-      projected->vectors.setOnes(1, 1);
-      projected->values.setConstant(1, h(0, 0));
-      break;
-    case 2:
-      DecomposeFixed<2>(h, projected);
-      break;
-    case 3:
-      DecomposeFixed<3>(h, projected);
-      break;
-    case 4:
-      DecomposeFixed<4>(h, projected);
-      break;
-    case 6:
-      DecomposeFixed<6>(h, projected);
-      break;
-    case 9:
-      DecomposeFixed<9>(h, projected);
-      break;
-    default: {
-      Eigen::SelfAdjointEigenSolver<TermMatrix> eigen(h);
-      projected->vectors = eigen.eigenvectors();
-      projected->values = eigen.eigenvalues();
-      break;
+void ProjectHessian(const TermModel& model, ProjectedHessian* projected, EigenvalueFilter filter) {
+  if (model.reduced) {
+    projected->vectors = model.reduced_directions;
+    projected->values = model.reduced_values;
+    projected->coordinates = model.reduced_coordinates;
+  } else {
+    const TermMatrix& h = model.hessian;
+    switch (h.rows()) {
+      case 1:
+        projected->vectors.setOnes(1, 1);
+        projected->values.setConstant(1, h(0, 0));
+        break;
+      case 2:
+        DecomposeFixed<2>(h, projected);
+        break;
+      case 3:
+        DecomposeFixed<3>(h, projected);
+        break;
+      case 4:
+        DecomposeFixed<4>(h, projected);
+        break;
+      case 6:
+        DecomposeFixed<6>(h, projected);
+        break;
+      case 9:
+        DecomposeFixed<9>(h, projected);
+        break;
+      default: {
+        Eigen::SelfAdjointEigenSolver<TermMatrix> eigen(h);
+        projected->vectors = eigen.eigenvectors();
+        projected->values = eigen.eigenvalues();
+        break;
+      }
+    }
+    projected->coordinates.resize(projected->vectors.cols());
+    for (int i = 0; i < projected->vectors.cols(); ++i) {
+      projected->coordinates[i] = projected->vectors.col(i).dot(model.gradient);
     }
   }
   const double scale =
       std::max(projected->values.size() > 0 ? projected->values.cwiseAbs().maxCoeff() : 0.0,
                model.gauss_newton_scale);
+  if (filter == EigenvalueFilter::kAbsolute) projected->values = projected->values.cwiseAbs();
   projected->values = projected->values.cwiseMax(kCurvatureFloor * scale);
 }
 

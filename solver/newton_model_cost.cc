@@ -9,7 +9,7 @@ namespace ipstep {
 NewtonModelCost::NewtonModelCost(const Term* term, int dimension, const double* weight,
                                  const bool* veto)
     : term_(term), dimension_(dimension), weight_(weight), veto_(veto) {
-  set_num_residuals(ModelSize(*term, dimension));
+  set_num_residuals(ModelRows(*term, dimension));
   *mutable_parameter_block_sizes() = term->cost->parameter_block_sizes();
 }
 
@@ -42,7 +42,7 @@ bool NewtonModelCost::Evaluate(double const* const* parameters, double* residual
       continue;
     }
     const double root = std::sqrt(lambda);
-    residuals[i] = projected.vectors.col(i).dot(model.gradient) / root;
+    residuals[i] = projected.coordinates[i] / root;
     for (int b = 0; b < blocks; ++b) {
       if (jacobians[b] == nullptr) continue;
       double* row = jacobians[b] + i * dimension_;

@@ -3,15 +3,18 @@
 //
 // Ceres builds its model from residual blocks as J^T J (Gauss-Newton). For a
 // term with projected model Hessian H+ = V Lambda V^T (core/term_hessian.h;
-// every eigenvalue > 0) and gradient g, this cost function returns one
-// residual per model coordinate,
-//   r^ = Lambda^(-1/2) V^T g,     J^ = Lambda^(1/2) V^T,
+// every eigenvalue > 0) and gradient g = V c, this cost function returns one
+// residual per column of V,
+//   r^ = Lambda^(-1/2) c,     J^ = Lambda^(1/2) V^T,
 // and its companion loss (NewtonModelLoss) returns rho = [2 e, 1, 0], where e
 // is the term's (weighted) energy, computed by the cost function in the same
 // residual-block evaluation. Then for this block Ceres sees
 //   cost       1/2 rho = e                       (the exact energy),
-//   gradient   rho' J^T r^ = V Lambda^(1/2) Lambda^(-1/2) V^T g = g,
+//   gradient   rho' J^T r^ = V Lambda^(1/2) Lambda^(-1/2) c = g,
 //   model      rho' J^T J = V Lambda V^T = H+,
+// For a full eigen-decomposition V is orthonormal and c = V^T g (one row per
+// model coordinate); for a reduced model (an elastic element) V = B^T Q has
+// one column per reduced coordinate (9 rows for a tetrahedron, not 12).
 // and its corrector is the identity (rho' = 1, rho'' = 0). Levenberg-Marquardt
 // and dogleg thereby become trust-region projected Newton, solved by Ceres's
 // sparse Cholesky. Terms whose Gauss-Newton model is exact (inertia, affine

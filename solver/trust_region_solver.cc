@@ -7,6 +7,8 @@
 
 #include "core/stopping_rule.h"
 #include "solver/newton_model_cost.h"
+#include "solver/node_ordering.h"
+#include "solver/serial_openmp.h"
 #include "solver/solve_status.h"
 
 namespace ipstep {
@@ -79,7 +81,45 @@ void TrustRegionSolver::BuildProblem() {
       problem_->SetParameterBlockConstant(block);
     }
   }
+  ChooseOrdering();
   built_version_ = potential_->structure_version();
+}
+
+void TrustRegionSolver::ChooseOrdering() {
+  node_order_.clear();
+  if (ceres_options_.linear_solver_type != ceres::SPARSE_NORMAL_CHOLESKY ||
+      ceres_options_.sparse_linear_algebra_library_type != ceres::SUITE_SPARSE) {
+    return;
+  }
+  FillOrdering ordering = ParseFillOrdering(options_.linear_solver_ordering);
+  if (ordering == FillOrdering::kAutomatic) {
+    int free_dofs = 0;
+    for (int i = 0; i < state_->num_nodes(); ++i) free_dofs += state_->is_free(i);
+    ordering = ::ipstep::ChooseOrdering(state_->dimension, free_dofs * state_->dimension);
+  }
+  if (ordering == FillOrdering::kNestedDissection) {
+    node_order_ = NestedDissectionNodeOrder(*potential_, *state_);
+  }
+}
+
+std::shared_ptr<ceres::ParameterBlockOrdering> TrustRegionSolver::MakeOrdering() {
+  if (node_order_.empty()) return nullptr;
+  // One elimination group per node, in node_order_, and every other block
+  // (constant ones: Ceres wants all blocks) in a last group. A fresh object
+  // per solve: Ceres removes the constant blocks from the ordering it is
+  // given.
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  const int dim = state_->dimension;
+  for (size_t k = 0; k < node_order_.size(); ++k) {
+    ordering->AddElementToGroup(positions_.data() + dim * node_order_[k], static_cast<int>(k));
+  }
+  std::vector<double*> blocks;
+  problem_->GetParameterBlocks(&blocks);
+  const int last = static_cast<int>(node_order_.size());
+  for (double* block : blocks) {
+    if (!ordering->IsMember(block)) ordering->AddElementToGroup(block, last);
+  }
+  return ordering;
 }
 
 void TrustRegionSolver::FilterCallback::PrepareForEvaluation(bool, bool new_evaluation_point) {
@@ -134,8 +174,10 @@ bool TrustRegionSolver::BacktrackRejectedStep() {
   // Without inertia (quasi-static) the model can be nearly singular (a body
   // free to slide, gravity's tiny curvature): its steps are then poor
   // directions, and the trust region's memory of a small radius is the better
-  // globalisation (solver/trust_region_solver.h).
-  if (!(potential_->context().inertia_weight > 0.0)) return false;
+  // globalisation (solver/trust_region_solver.h). Only a full step that Ceres
+  // refused for its cost's round-off is taken.
+  const bool quasi_static = !(potential_->context().inertia_weight > 0.0);
+  if (quasi_static && rejected_vetoed_) return false;
   // Model steps that keep raising the energy (every restart's first step
   // rejected again) are poor directions: after kMaxShortBacktracks such
   // restarts in a row, leave them to the trust region, whose radius
@@ -168,6 +210,7 @@ bool TrustRegionSolver::BacktrackRejectedStep() {
         short_backtracks_ = 0;  // the full step: rejected only by round-off
         return true;
       }
+      if (quasi_static) return false;
       const double curvature = static_cast<double>(e1 - e0) - slope;  // of the quadratic
       if (curvature > 0.0) alpha = std::clamp(-slope / (2.0 * curvature), 0.1, 0.5);
     }
@@ -215,7 +258,11 @@ StepSolveResult TrustRegionSolver::Solve(Eigen::VectorXd* x) {
   while (true) {
     restart_point_.resize(0);
     trial_since_callback_ = false;
-    ceres::Solve(options, problem_.get(), &summary);
+    options.linear_solver_ordering = MakeOrdering();
+    {
+      const SerialOpenMp serial;  // Ceres's SUITE_SPARSE: CHOLMOD (solver/serial_openmp.h)
+      ceres::Solve(options, problem_.get(), &summary);
+    }
     VLOG(3) << summary.FullReport();
     iterations += summary.iterations.empty() ? 0 : static_cast<int>(summary.iterations.size()) - 1;
     evaluations += summary.num_residual_evaluations;

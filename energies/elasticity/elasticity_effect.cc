@@ -64,8 +64,16 @@ void FillTerm(const ElasticMaterial& material, const double* const* rest, Term* 
       return functor.Curvature(x, c, curvature);
     };
   }
+  if constexpr (HasReducedModel(kModel)) {
+    term->reduced_model = [functor](const double* const* x, bool, ReducedModel* model) {
+      return functor.FillReducedModel(x, model);
+    };
+    term->reduced_size = kDim * kDim;
+  }
   if constexpr (kModel == ElasticModel::kNeoHookean) {
     term->loss = std::make_unique<OffsetLoss>(functor.offset);
+    const long double offset = functor.offset;
+    term->precise_loss = [offset](long double s) { return s - offset; };
   }
 }
 

@@ -30,9 +30,9 @@
 //   J^T J + r Hess r = Hess e, Hess r analytic: element_curvature.h); its
 //   Gauss-Newton model is only rank one. The
 //   price is precision: e is the difference of r^2 / 2 and c / 2, about
-//   1e-20 mu V absolute, i.e. a relative error of 1e-20 / strain^2 per element
-//   (the loss is evaluated in double even by the extended-precision line-search
-//   energy). (With
+//   1e-20 mu V absolute in double, i.e. a relative error of 1e-20 / strain^2
+//   per element (the extended-precision line-search energy subtracts c in
+//   long double too, Term::precise_loss: about 1e-23 mu V). (With
 //   nu < 0, lambda < 0 and Psi is unbounded below as J -> 0; the term fails
 //   where 2 V Psi + c <= 0.)
 //
@@ -43,7 +43,11 @@
 
 #include <cmath>
 
+#include <Eigen/Core>
+
+#include "core/term_hessian.h"
 #include "energies/elasticity/element_curvature.h"
+#include "energies/elasticity/isotropic_eigensystem.h"
 #include "energies/elasticity/polar_decomposition.h"
 #include "problems/elastic_material.h"
 
@@ -57,6 +61,11 @@ namespace ipstep {
 // lbfgs: with 1 the line search stalled at 1.0e-5 m/s on 32 of 100 steps, with
 // 1e-4 (fixed_corotated and stvk, exact squares, never stalled).
 constexpr double kNeoHookeanOffset = 1e-4;
+
+// True for the models whose Newton model is the closed-form reduced one
+// (isotropic_eigensystem.h): every isotropic model, not linear (whose
+// Gauss-Newton model is already its exact Hessian).
+constexpr bool HasReducedModel(ElasticModel model) { return model != ElasticModel::kLinear; }
 
 template <ElasticModel kModel, int kDim>
 struct ElasticElement {
@@ -195,6 +204,40 @@ struct ElasticElement {
     } else {
       return element_curvature::FixedCorotated2(x, dm_inv, volume, mu, lambda, c, curvature);
     }
+  }
+
+  // Term::reduced_model (core/term_hessian.h): the energy V Psi(F) through
+  // y = vec(F) = B x, B[(i d + j), (a d + k)] = d_ik D_aj (element_curvature.h's
+  // (1)), with Psi's F-space eigensystem in closed form
+  // (isotropic_eigensystem.h); for the models of HasReducedModel only.
+  bool FillReducedModel(const double* const* x, ReducedModel* out) const {
+    static_assert(HasReducedModel(kModel));
+    double F[kDim][kDim];
+    const double J = DeformationGradient(x, F);
+    if (!(J > 0.0)) return false;
+    Eigen::Matrix<double, kDim, kDim> f;
+    for (int i = 0; i < kDim; ++i) {
+      for (int j = 0; j < kDim; ++j) f(i, j) = F[i][j];
+    }
+    DeformationModel<kDim> d;
+    if (!IsotropicDeformationModel<kDim>(kModel, f, mu, lambda, true, &d)) return false;
+    out->energy = volume * d.psi;
+    out->gradient = volume * d.stress;
+    out->eigenvalues = volume * d.eigenvalues;
+    out->eigenvectors = d.eigenvectors;
+    out->map.setZero(kDim * kDim, (kDim + 1) * kDim);
+    for (int a = 0; a <= kDim; ++a) {
+      for (int j = 0; j < kDim; ++j) {
+        double shape = 0.0;  // D_aj
+        if (a > 0) {
+          shape = dm_inv[a - 1][j];
+        } else {
+          for (int c = 0; c < kDim; ++c) shape -= dm_inv[c][j];
+        }
+        for (int i = 0; i < kDim; ++i) out->map(i * kDim + j, a * kDim + i) = shape;
+      }
+    }
+    return true;
   }
 
   double dm_inv[kDim][kDim];
