@@ -25,7 +25,10 @@ DEFINE_int32(max_iterations, 0,
              "newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, ncg 20000, "
              "gradient_descent 50000");
 DEFINE_double(time_limit, 0.0, "Wall-time limit per step [s], in (0, 1e9]; default: none");
-DEFINE_int32(num_threads, 1, "Ceres threads (newton, dogleg, gauss_newton), in [1, 256]");
+DEFINE_int32(num_threads, 0,
+             "Threads for the terms' energies, gradients and Newton models (every optimizer; "
+             "the same iterates for any count) and Ceres's own evaluation (gauss_newton), in "
+             "[1, 256]; default: the machine's hardware threads");
 DEFINE_string(linear_solver, "",
               "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
 DEFINE_string(sparse_library, "",
@@ -54,9 +57,12 @@ DEFINE_bool(precise_energy, true,
             "line-search optimizers: sum energies in extended precision (resolves smaller "
             "force imbalances; costs one extra energy pass per evaluation)");
 DEFINE_string(hessian_projection, "always",
-              "projected_newton: always (every term's Hessian projected to PSD) | "
-              "when_indefinite (the exact Hessian's step when the assembled sum is positive "
-              "definite, the projected one otherwise)");
+              "newton/dogleg/projected_newton: how each iteration's model is made positive "
+              "definite: always (every term's Hessian, negative eigenvalues clamped) | abs "
+              "(every term's, negative eigenvalues by their magnitude) | trust_region (clamp or "
+              "abs per iteration from the last step's model fit); projected_newton also: "
+              "when_indefinite (the exact Hessian when the assembled sum is positive definite) | "
+              "progressive (only terms at nodes whose force imbalance is above the tolerance)");
 DEFINE_double(newmark_beta, 0.25, "Newmark beta, in [1e-3, 1] (integrators/newmark.h)");
 DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in [0.5, 1] (integrators/newmark.h)");
 DEFINE_double(energy_tolerance, 0.1,
@@ -113,14 +119,19 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   p.precise_line_search_energy = FLAGS_precise_energy;
   p.hessian_projection = ParseHessianProjection(FLAGS_hessian_projection);
   for (const char* flag : {"linear_solver", "sparse_library", "linear_solver_ordering",
-                           "trust_region_radius", "num_threads", "backtrack_rejected_steps"}) {
+                           "trust_region_radius", "backtrack_rejected_steps"}) {
     RequireOptimizerFamily(flag, OptimizerFamily::kTrustRegion, p.optimizer);
   }
   for (const char* flag :
        {"line_search", "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates"}) {
     RequireOptimizerFamily(flag, OptimizerFamily::kLineSearch, p.optimizer);
   }
-  RequireOptimizerFamily("hessian_projection", OptimizerFamily::kEigenNewton, p.optimizer);
+  if (!FlagIsDefault("hessian_projection") && !UsesNewtonModel(p.optimizer)) {
+    throw InputError("flag", "--hessian_projection",
+                     std::string("applies to newton, dogleg and projected_newton, not to "
+                                 "--optimizer=") +
+                         OptimizerName(p.optimizer));
+  }
   // Flags whose unset value is a sentinel of the options (0 or -1: the
   // default) are used only when given, and then must be in range: an explicit
   // --dt=0 is an error, not the scene's time step.
@@ -134,7 +145,10 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
     p.time_limit = CheckFlagRange("time_limit", FLAGS_time_limit, 0.0, limits::kMaxTimeLimit, "s",
                                   "no limit", /*min_open=*/true);
   }
-  p.num_threads = CheckFlagRange("num_threads", FLAGS_num_threads, 1, limits::kMaxThreads, "");
+  if (!FlagIsDefault("num_threads")) {
+    p.num_threads = CheckFlagRange("num_threads", FLAGS_num_threads, 1, limits::kMaxThreads,
+                                   "the machine's hardware threads");
+  }
   if (!FlagIsDefault("trust_region_radius")) {
     p.initial_trust_region_radius = CheckFlagRange(
         "trust_region_radius", FLAGS_trust_region_radius, limits::kMinTrustRegionRadius,

@@ -8,8 +8,29 @@
 namespace ipstep {
 
 IncrementalPotential::IncrementalPotential(int dimension, int num_nodes)
-    : dimension_(dimension), num_nodes_(num_nodes), context_(std::make_unique<StepContext>()) {
+    : dimension_(dimension),
+      num_nodes_(num_nodes),
+      context_(std::make_unique<StepContext>()),
+      pool_(std::make_unique<ThreadPool>(1)) {
   context_->Resize(dimension, num_nodes);
+  ResizeScratch();
+}
+
+void IncrementalPotential::SetNumThreads(int threads) {
+  if (threads == pool_->num_threads()) return;
+  pool_ = std::make_unique<ThreadPool>(threads);
+  ResizeScratch();
+}
+
+void IncrementalPotential::ResizeScratch() const {
+  scratch_.resize(pool_->num_threads());
+  for (Scratch& s : scratch_) {
+    s.residuals.resize(max_residuals_);
+    s.precise_residuals.resize(max_residuals_);
+    s.jacobian_storage.resize(static_cast<size_t>(max_residuals_) * max_nodes_ * dimension_);
+    s.jacobians.resize(max_nodes_);
+    s.parameters.resize(max_nodes_);
+  }
 }
 
 void IncrementalPotential::AddTerm(Term term) {
@@ -51,12 +72,13 @@ void IncrementalPotential::AddTerm(Term term) {
   if (term.kind == TermKind::kInertia) term.gauss_newton_model = true;
   max_residuals_ = std::max(max_residuals_, term.cost->num_residuals());
   max_nodes_ = std::max(max_nodes_, static_cast<int>(term.nodes.size()));
-  residuals_.resize(max_residuals_);
-  precise_residuals_.resize(max_residuals_);
-  jacobian_storage_.resize(static_cast<size_t>(max_residuals_) * max_nodes_ * dimension_);
-  jacobians_.resize(max_nodes_);
-  parameters_.resize(max_nodes_);
+  ResizeScratch();
+  gradient_offset_.push_back(static_cast<int>(term_gradient_.size()));
+  term_gradient_.resize(term_gradient_.size() + term.nodes.size() * dimension_);
   terms_.push_back(std::move(term));
+  term_energy_.resize(terms_.size());
+  term_precise_energy_.resize(terms_.size());
+  term_ok_.resize(terms_.size());
   ++structure_version_;
 }
 
@@ -66,7 +88,19 @@ int IncrementalPotential::RemoveTerms(const std::string& family) {
                               [&](const Term& t) { return t.family == family; }),
                terms_.end());
   const int removed = static_cast<int>(before - terms_.size());
-  if (removed > 0) ++structure_version_;
+  if (removed > 0) {
+    ++structure_version_;
+    gradient_offset_.clear();
+    size_t offset = 0;
+    for (const Term& t : terms_) {
+      gradient_offset_.push_back(static_cast<int>(offset));
+      offset += t.nodes.size() * dimension_;
+    }
+    term_gradient_.resize(offset);
+    term_energy_.resize(terms_.size());
+    term_precise_energy_.resize(terms_.size());
+    term_ok_.resize(terms_.size());
+  }
   return removed;
 }
 
@@ -98,31 +132,53 @@ bool IncrementalPotential::IsFeasible(const double* x) const {
   return true;
 }
 
+bool IncrementalPotential::PreciseTermEnergy(int t, double weight, const double* x,
+                                             Scratch* scratch) const {
+  const Term& term = terms_[t];
+  const int m = term.cost->num_residuals();
+  for (size_t b = 0; b < term.nodes.size(); ++b) {
+    scratch->parameters[b] = x + dimension_ * term.nodes[b];
+  }
+  long double s = 0.0L;
+  if (term.precise_residual) {
+    if (!term.precise_residual(scratch->parameters.data(), scratch->precise_residuals.data())) {
+      return false;
+    }
+    for (int r = 0; r < m; ++r) s += scratch->precise_residuals[r] * scratch->precise_residuals[r];
+  } else {
+    if (!term.cost->Evaluate(scratch->parameters.data(), scratch->residuals.data(), nullptr)) {
+      return false;
+    }
+    for (int r = 0; r < m; ++r) {
+      s += static_cast<long double>(scratch->residuals[r]) * scratch->residuals[r];
+    }
+  }
+  long double e = s;
+  if (term.precise_loss) {
+    e = term.precise_loss(s);
+  } else if (term.loss) {
+    double rho[3];
+    term.loss->Evaluate(static_cast<double>(s), rho);
+    e = rho[0];
+  }
+  term_precise_energy_[t] = 0.5L * weight * e;
+  return true;
+}
+
 bool IncrementalPotential::EvaluatePreciseEnergy(const double* x, long double* energy) const {
   if (!IsStepValid(x)) return false;
+  const int n = static_cast<int>(terms_.size());
+  pool_->ParallelFor(n, kParallelGrain, [&](int begin, int end, int thread) {
+    for (int t = begin; t < end; ++t) {
+      const double weight = TermWeight(terms_[t].kind, *context_);
+      term_precise_energy_[t] = 0.0L;
+      term_ok_[t] = weight == 0.0 || PreciseTermEnergy(t, weight, x, &scratch_[thread]);
+    }
+  });
   long double total = 0.0L;
-  for (const Term& term : terms_) {
-    const double weight = TermWeight(term.kind, *context_);
-    if (weight == 0.0) continue;
-    const int m = term.cost->num_residuals();
-    for (size_t b = 0; b < term.nodes.size(); ++b) parameters_[b] = x + dimension_ * term.nodes[b];
-    long double s = 0.0L;
-    if (term.precise_residual) {
-      if (!term.precise_residual(parameters_.data(), precise_residuals_.data())) return false;
-      for (int r = 0; r < m; ++r) s += precise_residuals_[r] * precise_residuals_[r];
-    } else {
-      if (!term.cost->Evaluate(parameters_.data(), residuals_.data(), nullptr)) return false;
-      for (int r = 0; r < m; ++r) s += static_cast<long double>(residuals_[r]) * residuals_[r];
-    }
-    long double e = s;
-    if (term.precise_loss) {
-      e = term.precise_loss(s);
-    } else if (term.loss) {
-      double rho[3];
-      term.loss->Evaluate(static_cast<double>(s), rho);
-      e = rho[0];
-    }
-    total += 0.5L * weight * e;
+  for (int t = 0; t < n; ++t) {
+    if (!term_ok_[t]) return false;
+    total += term_precise_energy_[t];
   }
   if (!std::isfinite(static_cast<double>(total))) return false;
   *energy = total;
@@ -145,46 +201,77 @@ bool IncrementalPotential::EvaluateUnweighted(const TermFilter& filter, const do
   return Accumulate(filter, /*weighted=*/false, x, energy, gradient);
 }
 
+bool IncrementalPotential::EvaluateTerm(int t, double weight, const double* x, bool gradient,
+                                        Scratch* scratch) const {
+  const Term& term = terms_[t];
+  const int m = term.cost->num_residuals();
+  const int blocks = static_cast<int>(term.nodes.size());
+  for (int b = 0; b < blocks; ++b) {
+    scratch->parameters[b] = x + dimension_ * term.nodes[b];
+    scratch->jacobians[b] =
+        scratch->jacobian_storage.data() + static_cast<size_t>(b) * m * dimension_;
+  }
+  double* residuals = scratch->residuals.data();
+  if (!term.cost->Evaluate(scratch->parameters.data(), residuals,
+                           gradient ? scratch->jacobians.data() : nullptr)) {
+    return false;
+  }
+  double s = 0.0;
+  for (int r = 0; r < m; ++r) s += residuals[r] * residuals[r];
+  double rho[3] = {s, 1.0, 0.0};
+  if (term.loss) term.loss->Evaluate(s, rho);
+  term_energy_[t] = 0.5 * weight * rho[0];
+  if (!gradient) return true;
+  // d/dx 1/2 rho(|r|^2) = rho'(s) J^T r (row-major Jacobian blocks).
+  const double scale = weight * rho[1];
+  double* g = term_gradient_.data() + gradient_offset_[t];
+  for (int b = 0; b < blocks; ++b) {
+    const double* jac = scratch->jacobians[b];
+    for (int k = 0; k < dimension_; ++k) g[b * dimension_ + k] = 0.0;
+    for (int r = 0; r < m; ++r) {
+      const double sr = scale * residuals[r];
+      for (int k = 0; k < dimension_; ++k) g[b * dimension_ + k] += sr * jac[r * dimension_ + k];
+    }
+  }
+  return true;
+}
+
 bool IncrementalPotential::Accumulate(const TermFilter& filter, bool weighted, const double* x,
                                       double* energy, double* gradient) const {
-  const int n = dimension_ * num_nodes_;
-  double total = 0.0;
-  if (gradient != nullptr) std::fill(gradient, gradient + n, 0.0);
-  for (const Term& term : terms_) {
-    if (filter && !filter(term)) continue;
-    const double weight = weighted ? TermWeight(term.kind, *context_) : 1.0;
-    if (weight == 0.0) continue;
-    const int m = term.cost->num_residuals();
-    const int blocks = static_cast<int>(term.nodes.size());
-    for (int b = 0; b < blocks; ++b) {
-      parameters_[b] = x + dimension_ * term.nodes[b];
-      jacobians_[b] = jacobian_storage_.data() + static_cast<size_t>(b) * m * dimension_;
-    }
-    if (!term.cost->Evaluate(parameters_.data(), residuals_.data(),
-                             gradient != nullptr ? jacobians_.data() : nullptr)) {
-      return false;
-    }
-    double s = 0.0;
-    for (int r = 0; r < m; ++r) s += residuals_[r] * residuals_[r];
-    double rho[3] = {s, 1.0, 0.0};
-    if (term.loss) term.loss->Evaluate(s, rho);
-    total += 0.5 * weight * rho[0];
-    if (gradient == nullptr) continue;
-    // d/dx 1/2 rho(|r|^2) = rho'(s) J^T r (row-major Jacobian blocks).
-    const double scale = weight * rho[1];
-    for (int b = 0; b < blocks; ++b) {
-      const double* jac = jacobians_[b];
-      double* g = gradient + dimension_ * term.nodes[b];
-      for (int r = 0; r < m; ++r) {
-        const double sr = scale * residuals_[r];
-        for (int k = 0; k < dimension_; ++k) g[k] += sr * jac[r * dimension_ + k];
+  const int n_dofs = dimension_ * num_nodes_;
+  const int n = static_cast<int>(terms_.size());
+  const bool with_gradient = gradient != nullptr;
+  // term_ok_: 1 evaluated, 0 failed, 2 skipped (filtered out or weight 0).
+  pool_->ParallelFor(n, kParallelGrain, [&](int begin, int end, int thread) {
+    for (int t = begin; t < end; ++t) {
+      const Term& term = terms_[t];
+      const double weight = weighted ? TermWeight(term.kind, *context_) : 1.0;
+      if ((filter && !filter(term)) || weight == 0.0) {
+        term_ok_[t] = 2;
+        continue;
       }
+      term_ok_[t] = EvaluateTerm(t, weight, x, with_gradient, &scratch_[thread]) ? 1 : 0;
+    }
+  });
+  // Sums in term order: the same for any number of threads.
+  double total = 0.0;
+  if (with_gradient) std::fill(gradient, gradient + n_dofs, 0.0);
+  for (int t = 0; t < n; ++t) {
+    if (term_ok_[t] == 0) return false;
+    if (term_ok_[t] == 2) continue;
+    total += term_energy_[t];
+    if (!with_gradient) continue;
+    const Term& term = terms_[t];
+    const double* g = term_gradient_.data() + gradient_offset_[t];
+    for (size_t b = 0; b < term.nodes.size(); ++b) {
+      double* out = gradient + dimension_ * term.nodes[b];
+      for (int k = 0; k < dimension_; ++k) out[k] += g[b * dimension_ + k];
     }
   }
   if (!std::isfinite(total)) return false;
   *energy = total;
-  if (gradient != nullptr) {
-    for (int d = 0; d < n; ++d) {
+  if (with_gradient) {
+    for (int d = 0; d < n_dofs; ++d) {
       if (!std::isfinite(gradient[d])) return false;
     }
   }

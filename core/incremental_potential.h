@@ -6,6 +6,13 @@
 // overhead); it serves the line-search optimisers (solver/first_order_potential.h),
 // the stopping rule, force and energy reports. The trust-region optimisers hand
 // the very same cost functions to a ceres::Problem (solver/trust_region_solver.h).
+//
+// The loop runs on the potential's thread pool (SetNumThreads; core/thread_pool.h):
+// each term's energy and gradient go to memory of that term, and are summed
+// afterwards in term order, so the results are the same for any number of
+// threads. Terms' cost functions must therefore be safe to call concurrently
+// (Ceres's own rule for cost functions); step filters are called on the
+// calling thread only.
 #pragma once
 
 #include <functional>
@@ -17,6 +24,7 @@
 #include "core/step_context.h"
 #include "core/step_filter.h"
 #include "core/term.h"
+#include "core/thread_pool.h"
 
 namespace ipstep {
 
@@ -63,9 +71,30 @@ class IncrementalPotential {
   // E(x) with residuals in extended precision where terms provide them.
   bool EvaluatePreciseEnergy(const double* x, long double* energy) const;
 
+  // The threads term loops run on (1 at construction); the solvers' own
+  // loops over terms use the same pool.
+  void SetNumThreads(int threads);
+  ThreadPool& thread_pool() const { return *pool_; }
+  // Terms per thread below which a loop stays on the calling thread.
+  static constexpr int kParallelGrain = 256;
+
  private:
+  // Per-thread evaluation memory.
+  struct Scratch {
+    std::vector<double> residuals;
+    std::vector<long double> precise_residuals;
+    std::vector<double> jacobian_storage;
+    std::vector<double*> jacobians;
+    std::vector<const double*> parameters;
+  };
   bool Accumulate(const TermFilter& filter, bool weighted, const double* x, double* energy,
                   double* gradient) const;
+  // Term t's weighted (or not) energy and, with `gradient`, its gradient
+  // into term_gradient_ at gradient_offset_[t]. False if it cannot be
+  // evaluated at x.
+  bool EvaluateTerm(int t, double weight, const double* x, bool gradient, Scratch* scratch) const;
+  bool PreciseTermEnergy(int t, double weight, const double* x, Scratch* scratch) const;
+  void ResizeScratch() const;
 
   int dimension_;
   int num_nodes_;
@@ -75,12 +104,15 @@ class IncrementalPotential {
   int structure_version_ = 0;
   int max_residuals_ = 0;
   int max_nodes_ = 0;
-  // Scratch for evaluation (mutable: Evaluate is logically const).
-  mutable std::vector<double> residuals_;
-  mutable std::vector<long double> precise_residuals_;
-  mutable std::vector<double> jacobian_storage_;
-  mutable std::vector<double*> jacobians_;
-  mutable std::vector<const double*> parameters_;
+  std::unique_ptr<ThreadPool> pool_;
+  // Evaluation memory (mutable: Evaluate is logically const): per thread,
+  // and per term (energies, ok flags, gradients at gradient_offset_[t]).
+  mutable std::vector<Scratch> scratch_;
+  mutable std::vector<double> term_energy_;
+  mutable std::vector<long double> term_precise_energy_;
+  mutable std::vector<char> term_ok_;
+  mutable std::vector<double> term_gradient_;
+  std::vector<int> gradient_offset_;
 };
 
 }  // namespace ipstep

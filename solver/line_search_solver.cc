@@ -25,6 +25,7 @@ LineSearchSolver::LineSearchSolver(IncrementalPotential* potential, const State*
       problem_(std::make_unique<ceres::GradientProblem>(function_)),
       parameters_(function_->NumParameters()),
       gradient_(state->num_dofs()) {
+  potential_->SetNumThreads(ThreadCount(options));
   if (options.optimizer == Optimizer::kBfgs && function_->NumParameters() > kMaxBfgsParameters) {
     throw InputError("options", "OptimizerOptions.optimizer=bfgs",
                      "BFGS stores a dense matrix of " + std::to_string(function_->NumParameters()) +

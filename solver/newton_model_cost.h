@@ -36,14 +36,27 @@
 #include <ceres/loss_function.h>
 
 #include "core/term.h"
+#include "core/term_hessian.h"
 
 namespace ipstep {
 
+class NewtonModelCache;
+
+// The rows above from a term's model and its projection: residuals r^ (one
+// per column of V) and per parameter block b the row-major rows x dimension
+// Jacobian block jacobians[b] (null blocks are skipped).
+void NewtonModelRows(const Term& term, int dimension, const ProjectedHessian& projected,
+                     double* residuals, double** jacobians);
+
 class NewtonModelCost : public ceres::CostFunction {
  public:
-  // `weight` (the family's step weight) and `veto` (a step filter refused the
-  // trial point: evaluation fails) are read at every evaluation.
-  NewtonModelCost(const Term* term, int dimension, const double* weight, const bool* veto);
+  // `weight` (the family's step weight), `veto` (a step filter refused the
+  // trial point: evaluation fails) and `filter` (may be null: clamp) are read
+  // at every evaluation. With a `cache` (solver/newton_model_cache.h) holding
+  // the point, its k-th entry `cache_index` is copied instead of computed.
+  NewtonModelCost(const Term* term, int dimension, const double* weight, const bool* veto,
+                  const EigenvalueFilter* filter = nullptr, const NewtonModelCache* cache = nullptr,
+                  int cache_index = -1);
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
   // The weighted energy of the last evaluation.
@@ -54,6 +67,9 @@ class NewtonModelCost : public ceres::CostFunction {
   int dimension_;
   const double* weight_;
   const bool* veto_;
+  const EigenvalueFilter* filter_;
+  const NewtonModelCache* cache_;
+  int cache_index_;
   mutable double energy_ = 0.0;
 };
 

@@ -1,9 +1,11 @@
 #include "solver/optimizer_options.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "core/thread_pool.h"
 
 namespace ipstep {
 namespace {
@@ -112,15 +114,40 @@ Optimizer ParseOptimizer(const std::string& name) {
                    "unknown optimizer '" + name + "' (choose one of " + OptimizerNames() + ")");
 }
 
+constexpr struct {
+  HessianProjection projection;
+  const char* name;
+} kProjections[] = {
+    {HessianProjection::kAlways, "always"},
+    {HessianProjection::kAbsolute, "abs"},
+    {HessianProjection::kTrustRegion, "trust_region"},
+    {HessianProjection::kWhenIndefinite, "when_indefinite"},
+    {HessianProjection::kProgressive, "progressive"},
+};
+
 const char* HessianProjectionName(HessianProjection projection) {
-  return projection == HessianProjection::kAlways ? "always" : "when_indefinite";
+  for (const auto& entry : kProjections) {
+    if (entry.projection == projection) return entry.name;
+  }
+  return "always";
+}
+
+const char* HessianProjectionNames() {
+  return "always, abs, trust_region, when_indefinite, progressive";
 }
 
 HessianProjection ParseHessianProjection(const std::string& name) {
-  if (name == "always") return HessianProjection::kAlways;
-  if (name == "when_indefinite") return HessianProjection::kWhenIndefinite;
-  throw InputError("options", "OptimizerOptions.hessian_projection",
-                   "unknown projection '" + name + "' (always or when_indefinite)");
+  for (const auto& entry : kProjections) {
+    if (name == entry.name) return entry.projection;
+  }
+  throw InputError(
+      "options", "OptimizerOptions.hessian_projection",
+      "unknown projection '" + ClipInput(name) + "' (" + HessianProjectionNames() + ")");
+}
+
+bool IsPerTermProjection(HessianProjection projection) {
+  return projection == HessianProjection::kAlways || projection == HessianProjection::kAbsolute ||
+         projection == HessianProjection::kTrustRegion;
 }
 
 OptimizerFamily FamilyOf(Optimizer optimizer) {
@@ -143,6 +170,10 @@ bool IsTrustRegion(Optimizer optimizer) {
 bool UsesNewtonModel(Optimizer optimizer) {
   return optimizer == Optimizer::kNewton || optimizer == Optimizer::kDogleg ||
          optimizer == Optimizer::kProjectedNewton;
+}
+
+int ThreadCount(const OptimizerOptions& o) {
+  return o.num_threads > 0 ? std::min(o.num_threads, limits::kMaxThreads) : DefaultThreadCount();
 }
 
 SparseLibrary ProjectedNewtonSparseLibrary(const OptimizerOptions& o) {
@@ -180,9 +211,10 @@ void ValidateOptimizerOptions(const OptimizerOptions& o) {
                      "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s", true) +
                          " (0: none), got " + limits::FormatLimit(o.time_limit));
   }
-  if (o.num_threads < 1 || o.num_threads > limits::kMaxThreads) {
+  if (o.num_threads < 0 || o.num_threads > limits::kMaxThreads) {
     throw InputError("options", "OptimizerOptions.num_threads",
-                     "must be in [1, " + std::to_string(limits::kMaxThreads) + "], got " +
+                     "must be in [1, " + std::to_string(limits::kMaxThreads) +
+                         "] (0: the machine's hardware threads), got " +
                          std::to_string(o.num_threads));
   }
   const double radius = o.initial_trust_region_radius;
@@ -194,6 +226,14 @@ void ValidateOptimizerOptions(const OptimizerOptions& o) {
         "must be in " +
             limits::RangeText(limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius) +
             " (0: the default), got " + limits::FormatLimit(radius));
+  }
+  ParseFillOrdering(o.linear_solver_ordering);
+  if (o.optimizer == Optimizer::kProjectedNewton) ProjectedNewtonSparseLibrary(o);
+  if (!IsPerTermProjection(o.hessian_projection) && IsTrustRegion(o.optimizer)) {
+    throw InputError("options", "OptimizerOptions.hessian_projection",
+                     std::string(HessianProjectionName(o.hessian_projection)) +
+                         " needs the assembled Hessian: projected_newton only (" +
+                         OptimizerName(o.optimizer) + " takes always, abs or trust_region)");
   }
   if (o.lbfgs_rank < 0 || o.lbfgs_rank > limits::kMaxLbfgsRank) {
     throw InputError("options", "OptimizerOptions.lbfgs_rank",
@@ -213,7 +253,7 @@ ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
   c.minimizer_type = ceres::TRUST_REGION;
   c.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   c.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
-  c.num_threads = o.num_threads;
+  c.num_threads = ThreadCount(o);
   if (o.optimizer != Optimizer::kDogleg) {
     c.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
     c.initial_trust_region_radius = 1e16;  // full model steps, damped only after a rejection

@@ -56,15 +56,42 @@ bool IsTrustRegion(Optimizer optimizer);
 // dogleg, projected_newton): core/term_hessian.h.
 bool UsesNewtonModel(Optimizer optimizer);
 
-// projected_newton's model (solver/projected_newton_solver.h): every term's
-// Hessian projected to positive semi-definite (the default), or the exact
-// Hessian whenever the assembled sum is positive definite and the projected
-// one only otherwise (Longva et al. 2023, "Pitfalls of projection").
-enum class HessianProjection { kAlways, kWhenIndefinite };
+// How the Newton optimisers (newton, dogleg, projected_newton) make each
+// iteration's model positive definite (core/term_hessian.h,
+// solver/projected_newton_solver.h, solver/newton_model_cost.h):
+//  * kAlways: every term's Hessian projected, negative eigenvalues clamped to
+//    (almost) zero (Teran et al. 2005);
+//  * kAbsolute: every term's Hessian projected, negative eigenvalues replaced
+//    by their magnitude (Chen et al., SIGGRAPH 2024);
+//  * kTrustRegion: per iteration, clamp or absolute from the fit of the last
+//    step: absolute where the energy's actual decrease was below
+//    kTrustRegionFilterSwitch of the model's prediction, clamp otherwise (the
+//    idea of Chen et al., SIGGRAPH Asia 2024, "Trust-Region Eigenvalue
+//    Filtering for Projected Newton");
+//  * kWhenIndefinite (projected_newton only): the exact Hessian whenever the
+//    assembled sum is positive definite, clamped otherwise (Longva et al.
+//    2023, "Pitfalls of projection");
+//  * kProgressive (projected_newton only): only the terms at a node whose
+//    force imbalance is above the tolerance are projected (clamped), the set
+//    growing over a step's iterations; every term when the sum is then not
+//    positive definite (after Fernandez-Fernandez, Loeschner, Bender 2025,
+//    "Progressively Projected Newton's Method").
+// The first three are positive semi-definite per term, so Ceres's newton and
+// dogleg can take them (Ceres's model must be a sum of squares); the last two
+// need the assembled matrix.
+enum class HessianProjection { kAlways, kAbsolute, kTrustRegion, kWhenIndefinite, kProgressive };
 
-const char* HessianProjectionName(HessianProjection projection);  // "always", "when_indefinite"
+// The model fit (actual / predicted decrease of the last step) below which
+// kTrustRegion filters with the absolute value.
+constexpr double kTrustRegionFilterSwitch = 0.5;
+
+// "always", "abs", "trust_region", "when_indefinite", "progressive".
+const char* HessianProjectionName(HessianProjection projection);
+const char* HessianProjectionNames();  // comma-separated, for messages
 // Throws InputError naming the option OptimizerOptions.hessian_projection.
 HessianProjection ParseHessianProjection(const std::string& name);
+// True for the projections Ceres's newton and dogleg can use.
+bool IsPerTermProjection(HessianProjection projection);
 
 struct OptimizerOptions {
   Optimizer optimizer = Optimizer::kNewton;
@@ -76,7 +103,10 @@ struct OptimizerOptions {
   int max_iterations = 0;   // default: newton, dogleg, gauss_newton, projected_newton 100;
                             // lbfgs, bfgs 5000; ncg 20000; gradient_descent 50000
   double time_limit = 0.0;  // seconds per step; default 1e9 (none)
-  int num_threads = 1;
+  // Threads for the terms' energies, gradients and Newton models (every
+  // optimiser; the same iterates for any count: core/thread_pool.h) and for
+  // Ceres's own evaluation (gauss_newton). 0: the machine's hardware threads.
+  int num_threads = 0;
   std::string linear_solver;  // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR
   // Sparse Cholesky library: SUITE_SPARSE (the default), CX_SPARSE or
   // EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD supernodal) or
@@ -102,8 +132,8 @@ struct OptimizerOptions {
   // Line-search optimisers compare energies summed in extended precision
   // (solver/first_order_potential.h) unless false.
   bool precise_line_search_energy = true;
-  // projected_newton: which Newton model each iteration uses (see
-  // HessianProjection).
+  // newton, dogleg, projected_newton: how each iteration's model is made
+  // positive definite (see HessianProjection).
   HessianProjection hessian_projection = HessianProjection::kAlways;
 };
 
@@ -119,6 +149,8 @@ SparseLibrary ProjectedNewtonSparseLibrary(const OptimizerOptions& options);
 // "" (automatic), "AMD" or "NESDIS"; throws InputError naming
 // OptimizerOptions.linear_solver_ordering otherwise.
 FillOrdering ParseFillOrdering(const std::string& name);
+// options.num_threads, 0 resolved to the machine's hardware threads.
+int ThreadCount(const OptimizerOptions& options);
 // Validates the numeric fields (tolerance, limits): throws InputError naming the
 // field.
 void ValidateOptimizerOptions(const OptimizerOptions& options);

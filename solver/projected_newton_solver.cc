@@ -18,6 +18,10 @@ namespace {
 constexpr double kStepFilterFraction = 0.9;
 constexpr double kArmijo = 1e-4;
 constexpr int kMaxBacktracks = 60;
+// kProgressive: the threshold's shrink factor and the attempts per iteration
+// before every term is projected.
+constexpr double kProgressiveShrink = 0.25;
+constexpr int kProgressiveAttempts = 6;
 
 using Clock = std::chrono::steady_clock;
 
@@ -34,6 +38,7 @@ ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, co
       gradient_(state->num_dofs()),
       trial_(state->num_dofs()) {
   ValidateOptimizerOptions(options);
+  potential_->SetNumThreads(ThreadCount(options));
   tolerance_ = options.tolerance;
   max_iterations_ = options.max_iterations > 0 ? options.max_iterations : 100;
   time_limit_ = options.time_limit > 0.0 ? options.time_limit : 1e9;
@@ -89,7 +94,7 @@ void ProjectedNewtonSolver::BuildStructure() {
       }
     }
   }
-  parameters_.resize(kMaxTermCoordinates);
+  local_values_.resize(slots_.size());
   free_rhs_.resize(num_free_);
   free_step_.resize(num_free_);
   analyzed_ = false;
@@ -97,54 +102,114 @@ void ProjectedNewtonSolver::BuildStructure() {
   timings_.analyze += Since(start);
 }
 
-bool ProjectedNewtonSolver::AddTermHessian(const Term& term, const double* x, double weight,
-                                           const int* slots, bool project) {
+bool ProjectedNewtonSolver::TermLocalHessian(int t, const double* x, double weight,
+                                             TermHessian kind, Scratch* scratch) {
+  const Term& term = potential_->terms()[t];
   const int dim = state_->dimension;
   const int blocks = static_cast<int>(term.nodes.size());
-  for (int b = 0; b < blocks; ++b) parameters_[b] = x + dim * term.nodes[b];
-  if (!evaluator_.Evaluate(term, dim, weight, parameters_.data(), true, &model_)) return false;
+  scratch->parameters.resize(blocks);
+  for (int b = 0; b < blocks; ++b) scratch->parameters[b] = x + dim * term.nodes[b];
+  TermModel& model = scratch->model;
+  if (!scratch->evaluator.Evaluate(term, dim, weight, scratch->parameters.data(), true, &model)) {
+    return false;
+  }
   // Gauss-Newton models are PSD as they are (rho' J^T J, rho'' part only where
-  // positive); the others are projected.
-  const TermMatrix* h = &model_.hessian;
-  if (!term.gauss_newton_model && project) {
-    ProjectHessian(model_, &projected_);
-    scaled_.noalias() = projected_.vectors * projected_.values.asDiagonal();
-    local_hessian_.noalias() = scaled_ * projected_.vectors.transpose();
-    h = &local_hessian_;
+  // positive); the others are projected unless exact.
+  const TermMatrix* h = &model.hessian;
+  if (!term.gauss_newton_model && kind != TermHessian::kExact) {
+    ProjectedHessian& projected = scratch->projected;
+    ProjectHessian(
+        model, &projected,
+        kind == TermHessian::kAbsolute ? EigenvalueFilter::kAbsolute : EigenvalueFilter::kClamp);
+    scratch->scaled.noalias() = projected.vectors * projected.values.asDiagonal();
+    scratch->local.noalias() = scratch->scaled * projected.vectors.transpose();
+    h = &scratch->local;
   }
   // Pair-difference terms: the full Hessian is [[K, -K], [-K, K]].
   const int n = static_cast<int>(h->rows());
   const int nt = dim * blocks;
-  double* values = hessian_.valuePtr();
+  double* out = local_values_.data() + slot_offset_[t];
   int index = 0;
   for (int a = 0; a < nt; ++a) {
     for (int b = 0; b <= a; ++b, ++index) {
-      if (slots[index] < 0) continue;
       if (term.pair_difference) {
         const double sign = (a < n) == (b < n) ? 1.0 : -1.0;
-        values[slots[index]] += sign * (*h)(a % n, b % n);
+        out[index] = sign * (*h)(a % n, b % n);
       } else {
-        values[slots[index]] += (*h)(a, b);
+        out[index] = (*h)(a, b);
       }
     }
   }
   return true;
 }
 
-bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, bool project) {
+bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, TermHessian kind,
+                                            const std::vector<char>* projected_terms) {
   if (built_version_ != potential_->structure_version()) BuildStructure();
   const auto start = Clock::now();
-  std::fill(hessian_.valuePtr(), hessian_.valuePtr() + hessian_.nonZeros(), 0.0);
   const auto& terms = potential_->terms();
   const StepContext& context = potential_->context();
-  bool ok = true;
-  for (size_t t = 0; t < terms.size() && ok; ++t) {
-    const double weight = TermWeight(terms[t].kind, context);
-    if (weight == 0.0) continue;
-    ok = AddTermHessian(terms[t], x.data(), weight, slots_.data() + slot_offset_[t], project);
-  }
+  const int n = static_cast<int>(terms.size());
+  ThreadPool& pool = potential_->thread_pool();
+  if (static_cast<int>(scratch_.size()) < pool.num_threads()) scratch_.resize(pool.num_threads());
+  term_ok_.resize(n);
+  // term_ok_: 1 computed, 0 failed, 2 skipped (weight 0).
+  pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+    for (int t = begin; t < end; ++t) {
+      const double weight = TermWeight(terms[t].kind, context);
+      if (weight == 0.0) {
+        term_ok_[t] = 2;
+        continue;
+      }
+      const TermHessian term_kind = projected_terms == nullptr ? kind
+                                    : (*projected_terms)[t]    ? TermHessian::kClamped
+                                                               : TermHessian::kExact;
+      term_ok_[t] = TermLocalHessian(t, x.data(), weight, term_kind, &scratch_[thread]) ? 1 : 0;
+    }
+  });
+  const bool ok = ScatterTermHessians();
+  term_models_ += n;
   timings_.hessian += Since(start);
   return ok;
+}
+
+bool ProjectedNewtonSolver::UpdateTermHessians(const Eigen::VectorXd& x,
+                                               const std::vector<int>& terms, TermHessian kind) {
+  const auto start = Clock::now();
+  const StepContext& context = potential_->context();
+  const auto& all = potential_->terms();
+  const int n = static_cast<int>(terms.size());
+  ThreadPool& pool = potential_->thread_pool();
+  pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+    for (int k = begin; k < end; ++k) {
+      const int t = terms[k];
+      const double weight = TermWeight(all[t].kind, context);
+      term_ok_[t] = weight == 0.0
+                        ? 2
+                        : (TermLocalHessian(t, x.data(), weight, kind, &scratch_[thread]) ? 1 : 0);
+    }
+  });
+  term_models_ += n;
+  const bool ok = ScatterTermHessians();
+  timings_.hessian += Since(start);
+  return ok;
+}
+
+bool ProjectedNewtonSolver::ScatterTermHessians() {
+  // The sum in term order: the same matrix for any number of threads.
+  const int n = static_cast<int>(potential_->terms().size());
+  std::fill(hessian_.valuePtr(), hessian_.valuePtr() + hessian_.nonZeros(), 0.0);
+  double* values = hessian_.valuePtr();
+  for (int t = 0; t < n; ++t) {
+    if (term_ok_[t] == 2) continue;
+    if (term_ok_[t] != 1) return false;
+    const int begin = slot_offset_[t];
+    const int end = t + 1 < n ? slot_offset_[t + 1] : static_cast<int>(slots_.size());
+    for (int i = begin; i < end; ++i) {
+      if (slots_[i] >= 0) values[slots_[i]] += local_values_[i];
+    }
+  }
+  return true;
 }
 
 void ProjectedNewtonSolver::EnsureAnalyzed() {
@@ -223,6 +288,106 @@ bool ProjectedNewtonSolver::SolveFactorised(const Eigen::VectorXd& gradient,
   return true;
 }
 
+std::vector<int> ProjectedNewtonSolver::GrowProjectedSet(double threshold) {
+  const int dim = state_->dimension;
+  const StepContext& context = potential_->context();
+  // A node's share of the stopping measure (core/stopping_rule.h).
+  const double scale = context.time_step / context.potential_weight;
+  std::vector<int> added;
+  const auto& terms = potential_->terms();
+  for (size_t t = 0; t < terms.size(); ++t) {
+    if (projected_set_[t] || terms[t].gauss_newton_model) continue;
+    for (int node : terms[t].nodes) {
+      if (!state_->is_free(node)) continue;
+      const double measure = scale * gradient_.segment(dim * node, dim).norm() / state_->mass[node];
+      if (measure > threshold) {
+        projected_set_[t] = 1;
+        added.push_back(static_cast<int>(t));
+        break;
+      }
+    }
+  }
+  return added;
+}
+
+bool ProjectedNewtonSolver::ProgressiveDirection(const Eigen::VectorXd& x,
+                                                 Eigen::VectorXd* direction, bool* evaluated) {
+  // Terms at nodes whose share of the stopping measure is above
+  // threshold = fraction * (the largest share) are projected, the others
+  // exact; while the sum is not positive definite, the fraction drops by
+  // kProgressiveShrink and more terms join. The set only grows within a step.
+  const StepContext& context = potential_->context();
+  const double residual = StoppingMeasure(gradient_, *state_, context);
+  double fraction = 1.0;
+  for (int attempt = 0; attempt < kProgressiveAttempts; ++attempt, fraction *= kProgressiveShrink) {
+    const std::vector<int> added = GrowProjectedSet(fraction * residual);
+    bool ok;
+    if (attempt == 0) {
+      ok = AssembleHessian(x, TermHessian::kExact, &projected_set_);
+    } else {
+      if (added.empty()) continue;
+      ok = UpdateTermHessians(x, added, TermHessian::kClamped);
+    }
+    if (!ok) return *evaluated = false;
+    if (DefiniteDirection(gradient_, direction)) {
+      for (char flag : projected_set_) projected_terms_ += flag;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool ProjectedNewtonSolver::NewtonDirection(const Eigen::VectorXd& x, Eigen::VectorXd* direction,
+                                            std::string* status) {
+  // kWhenIndefinite: the exact Hessian's step where the sum is definite;
+  // kProgressive: the step of the partly projected Hessian where it is
+  // definite; else (and as their fallback) every term projected.
+  bool partial = false;
+  TermHessian kind = TermHessian::kClamped;
+  switch (projection_) {
+    case HessianProjection::kWhenIndefinite:
+      if (!AssembleHessian(x, TermHessian::kExact)) {
+        *status = "Hessian cannot be evaluated";
+        return false;
+      }
+      partial = DefiniteDirection(gradient_, direction);
+      break;
+    case HessianProjection::kProgressive: {
+      bool evaluated = true;
+      partial = ProgressiveDirection(x, direction, &evaluated);
+      if (!evaluated) {
+        *status = "Hessian cannot be evaluated";
+        return false;
+      }
+      break;
+    }
+    case HessianProjection::kAbsolute:
+      kind = TermHessian::kAbsolute;
+      break;
+    case HessianProjection::kTrustRegion:
+      kind = model_fit_ < kTrustRegionFilterSwitch ? TermHessian::kAbsolute : TermHessian::kClamped;
+      break;
+    case HessianProjection::kAlways:
+      break;
+  }
+  if (!partial) {
+    if (!AssembleHessian(x, kind)) {
+      *status = "Hessian cannot be evaluated";
+      return false;
+    }
+    if (projection_ == HessianProjection::kProgressive) {
+      projected_terms_ += static_cast<long>(potential_->terms().size());
+    }
+    if (!ComputeDirection(gradient_, direction)) {
+      *status = "factorisation failed";
+      return false;
+    }
+  }
+  ++(partial ? exact_directions_ : projected_directions_);
+  if (!partial && kind == TermHessian::kAbsolute) ++absolute_directions_;
+  return true;
+}
+
 StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
   const auto solve_start = Clock::now();
   if (built_version_ != potential_->structure_version()) BuildStructure();
@@ -242,6 +407,8 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
   result.residual = StoppingMeasure(gradient_, *state_, context);
   Eigen::VectorXd direction(state_->num_dofs());
   double alpha = 0.0;
+  model_fit_ = 1.0;
+  projected_set_.assign(potential_->terms().size(), 0);
   for (int iteration = 0;; ++iteration) {
     if (sink_) {
       IterationRecord record;
@@ -266,31 +433,16 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       result.status = "time limit: " + std::to_string(time_limit_) + " s";
       break;
     }
-    // The exact Hessian's step where the sum is definite (kWhenIndefinite),
-    // else the projected model's.
-    bool exact = false;
-    if (projection_ == HessianProjection::kWhenIndefinite) {
-      if (!AssembleHessian(*x, /*project=*/false)) {
-        result.status = "Hessian cannot be evaluated";
-        break;
-      }
-      exact = DefiniteDirection(gradient_, &direction);
+    std::string failure;
+    if (!NewtonDirection(*x, &direction, &failure)) {
+      result.status = failure;
+      break;
     }
-    if (!exact) {
-      if (!AssembleHessian(*x)) {
-        result.status = "Hessian cannot be evaluated";
-        break;
-      }
-      if (!ComputeDirection(gradient_, &direction)) {
-        result.status = "factorisation failed";
-        break;
-      }
-    }
-    ++(exact ? exact_directions_ : projected_directions_);
     ++result.iterations;
     start = Clock::now();
     double slope = gradient_.dot(direction);
-    if (!(slope < 0.0)) {  // not a descent direction (round-off): steepest descent
+    const bool newton_direction = slope < 0.0;
+    if (!newton_direction) {  // not a descent direction (round-off): steepest descent
       direction = -gradient_;
       for (int d = 0; d < state_->num_dofs(); ++d) {
         if (free_index_[d] < 0) direction[d] = 0.0;
@@ -310,8 +462,15 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       trial_ = *x + alpha * direction;
       long double e = 0.0L;
       ++result.evaluations;
-      if (potential_->EvaluatePreciseEnergy(trial_.data(), &e) &&
-          e <= e0 + static_cast<long double>(kArmijo * alpha * slope)) {
+      const bool evaluable = potential_->EvaluatePreciseEnergy(trial_.data(), &e);
+      if (backtrack == 0 && newton_direction) {
+        // The model's fit at the first trial: actual over predicted decrease,
+        // the prediction -(alpha g^T p + alpha^2 / 2 p^T H p) with H p = -g.
+        const double predicted = -slope * (alpha - 0.5 * alpha * alpha);
+        model_fit_ = evaluable && predicted > 0.0 ? static_cast<double>(e0 - e) / predicted
+                                                  : -std::numeric_limits<double>::infinity();
+      }
+      if (evaluable && e <= e0 + static_cast<long double>(kArmijo * alpha * slope)) {
         accepted = true;
         break;
       }

@@ -66,25 +66,67 @@ class ProjectedNewtonSolver : public StepSolver {
                         const OptimizerOptions& options);
   StepSolveResult Solve(Eigen::VectorXd* x) override;
 
-  // Assembles the projected (project = false: exact) Hessian over the free
-  // DOFs at full positions x (lower triangle). False if a term cannot be
+  // How a term's Hessian enters the assembled matrix: exact, or projected
+  // with eigenvalues clamped or by their magnitude (core/term_hessian.h).
+  enum class TermHessian : char { kExact, kClamped, kAbsolute };
+  // Assembles the Hessian over the free DOFs at full positions x (lower
+  // triangle), every term's as `kind`; with `projected_terms` (one flag per
+  // term), the flagged terms clamped and the others exact. The terms' models
+  // are computed on the potential's thread pool and summed in term order
+  // (the same matrix for any number of threads). False if a term cannot be
   // evaluated. Public for tests and micro-benchmarks.
-  bool AssembleHessian(const Eigen::VectorXd& x, bool project = true);
+  bool AssembleHessian(const Eigen::VectorXd& x, TermHessian kind,
+                       const std::vector<char>* projected_terms = nullptr);
+  // project: kClamped, else kExact.
+  bool AssembleHessian(const Eigen::VectorXd& x, bool project = true) {
+    return AssembleHessian(x, project ? TermHessian::kClamped : TermHessian::kExact);
+  }
   const Eigen::SparseMatrix<double>& hessian() const { return hessian_; }
   // Free DOF index of each DOF (-1 for constrained ones).
   const std::vector<int>& free_index() const { return free_index_; }
   const Timings& timings() const { return timings_; }
-  // Iterations whose direction came from the exact Hessian (kWhenIndefinite)
-  // and from the projected one, over all solves.
+  // Iterations whose direction came from a matrix with some terms exact
+  // (kWhenIndefinite, kProgressive) and from a fully projected one, over
+  // all solves; term models projected (kProgressive: terms projected, of
+  // all terms' models computed).
   long exact_directions() const { return exact_directions_; }
   long projected_directions() const { return projected_directions_; }
+  long projected_terms() const { return projected_terms_; }
+  // Iterations whose terms were projected with the absolute-value filter
+  // (kAbsolute, kTrustRegion).
+  long absolute_directions() const { return absolute_directions_; }
+  long term_models() const { return term_models_; }
 
  private:
+  // Per-thread memory of the term models.
+  struct Scratch {
+    TermModelEvaluator evaluator;
+    TermModel model;
+    ProjectedHessian projected;
+    TermMatrix local;
+    TermMatrix scaled;
+    std::vector<const double*> parameters;
+  };
   void BuildStructure();
-  // Adds the term's projected (or exact) model Hessian at x into hessian_
-  // through its slots.
-  bool AddTermHessian(const Term& term, const double* x, double weight, const int* slots,
-                      bool project);
+  // The term's model Hessian at x, weighted, as `kind`, into its lower
+  // triangle at local_values_ + slot_offset_[t].
+  bool TermLocalHessian(int t, const double* x, double weight, TermHessian kind, Scratch* scratch);
+  // The direction of one iteration (projection_), into direction; false if
+  // no model could be evaluated or factorised (status set).
+  bool NewtonDirection(const Eigen::VectorXd& x, Eigen::VectorXd* direction, std::string* status);
+  // kProgressive: flags the terms at a node whose share of the stopping
+  // measure is above `threshold` (adding to projected_set_); returns those
+  // newly flagged.
+  std::vector<int> GrowProjectedSet(double threshold);
+  // kProgressive: the direction of the partly projected Hessian, projecting
+  // more terms while it is not positive definite; false if it stays so
+  // (evaluated: false if a term could not be evaluated).
+  bool ProgressiveDirection(const Eigen::VectorXd& x, Eigen::VectorXd* direction, bool* evaluated);
+  // Recomputes the listed terms' local matrices as `kind` and sums all again.
+  bool UpdateTermHessians(const Eigen::VectorXd& x, const std::vector<int>& terms,
+                          TermHessian kind);
+  // hessian_ = the sum of the terms' local matrices, in term order.
+  bool ScatterTermHessians();
   // The symbolic analysis of hessian_'s pattern, once per structure.
   void EnsureAnalyzed();
   // Factorises hessian_ as it is; true if it is positive definite (the
@@ -106,6 +148,13 @@ class ProjectedNewtonSolver : public StepSolver {
   HessianProjection projection_;
   long exact_directions_ = 0;
   long projected_directions_ = 0;
+  long projected_terms_ = 0;
+  long term_models_ = 0;
+  long absolute_directions_ = 0;
+  // kTrustRegion: the last step's model fit (actual / predicted decrease).
+  double model_fit_ = 1.0;
+  // kProgressive: the terms projected in this solve.
+  std::vector<char> projected_set_;
   double time_limit_;
   Timings timings_;
 
@@ -124,13 +173,10 @@ class ProjectedNewtonSolver : public StepSolver {
   FillOrdering cholesky_ordering_ = FillOrdering::kAutomatic;
   bool analyzed_ = false;
 
-  // Scratch.
-  TermModelEvaluator evaluator_;
-  TermModel model_;
-  ProjectedHessian projected_;
-  TermMatrix local_hessian_;
-  TermMatrix scaled_;
-  std::vector<const double*> parameters_;
+  // Scratch: per thread, and the terms' local matrices (slots_'s layout).
+  std::vector<Scratch> scratch_;
+  std::vector<double> local_values_;
+  std::vector<char> term_ok_;
   Eigen::VectorXd gradient_;
   Eigen::VectorXd trial_;
   Eigen::VectorXd free_rhs_;

@@ -6,6 +6,7 @@
 #include <glog/logging.h>
 
 #include "core/stopping_rule.h"
+#include "solver/newton_model_cache.h"
 #include "solver/newton_model_cost.h"
 #include "solver/node_ordering.h"
 #include "solver/serial_openmp.h"
@@ -21,6 +22,17 @@ TrustRegionSolver::TrustRegionSolver(IncrementalPotential* potential, const Stat
       ceres_options_(MakeTrustRegionOptions(options)),
       positions_(Eigen::VectorXd::Zero(state->num_dofs())),
       gradient_(state->num_dofs()) {
+  potential_->SetNumThreads(ThreadCount(options));
+  if (UsesNewtonModel(options.optimizer)) {
+    // The models are computed on the potential's threads (the cache); Ceres
+    // evaluates on one, summing costs in block order (deterministic).
+    ceres_options_.num_threads = 1;
+  }
+  filter_ = options.hessian_projection == HessianProjection::kAbsolute ? EigenvalueFilter::kAbsolute
+                                                                       : EigenvalueFilter::kClamp;
+  if (options.hessian_projection == HessianProjection::kTrustRegion) {
+    ceres_options_.callbacks.push_back(&fit_callback_);
+  }
   callback_ = std::make_unique<StoppingCallback>(
       options.tolerance,
       [this] {
@@ -40,7 +52,8 @@ void TrustRegionSolver::BuildProblem() {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  if (potential_->has_step_filters() || options_.backtrack_rejected_steps) {
+  if (potential_->has_step_filters() || options_.backtrack_rejected_steps ||
+      UsesNewtonModel(options_.optimizer)) {
     problem_options.evaluation_callback = &filter_callback_;
   }
   problem_ = std::make_unique<ceres::Problem>(problem_options);
@@ -49,16 +62,35 @@ void TrustRegionSolver::BuildProblem() {
   const int dim = state_->dimension;
   const StepContext& context = potential_->context();
   const bool newton_model = UsesNewtonModel(options_.optimizer);
+  auto weight_of = [&context](const Term& term) {
+    return term.kind == TermKind::kInertia     ? &context.inertia_weight
+           : term.kind == TermKind::kPotential ? &context.potential_weight
+                                               : &context.dissipation_weight;
+  };
+  // The terms whose Newton models the cache computes (in parallel, before
+  // Ceres evaluates: solver/newton_model_cache.h).
+  cache_.reset();
+  if (newton_model) {
+    std::vector<int> cached;
+    std::vector<const double*> weights;
+    for (size_t t = 0; t < potential_->terms().size(); ++t) {
+      const Term& term = potential_->terms()[t];
+      if (term.gauss_newton_model) continue;
+      cached.push_back(static_cast<int>(t));
+      weights.push_back(weight_of(term));
+    }
+    cache_ = std::make_unique<NewtonModelCache>(potential_, std::move(cached), std::move(weights));
+  }
+  int cache_index = 0;
   std::vector<double*> blocks;
   for (const Term& term : potential_->terms()) {
-    const double* weight = term.kind == TermKind::kInertia     ? &context.inertia_weight
-                           : term.kind == TermKind::kPotential ? &context.potential_weight
-                                                               : &context.dissipation_weight;
+    const double* weight = weight_of(term);
     blocks.clear();
     for (int node : term.nodes) blocks.push_back(positions_.data() + dim * node);
     if (newton_model && !term.gauss_newton_model) {
       // The projected Newton model (solver/newton_model_cost.h).
-      auto cost = std::make_unique<NewtonModelCost>(&term, dim, weight, &veto_);
+      auto cost = std::make_unique<NewtonModelCost>(&term, dim, weight, &veto_, &filter_,
+                                                    cache_.get(), cache_index++);
       weighted_losses_.push_back(std::make_unique<NewtonModelLoss>(cost.get()));
       problem_->AddResidualBlock(cost.get(), weighted_losses_.back().get(), blocks);
       weighted_costs_.push_back(std::move(cost));
@@ -122,16 +154,35 @@ std::shared_ptr<ceres::ParameterBlockOrdering> TrustRegionSolver::MakeOrdering()
   return ordering;
 }
 
-void TrustRegionSolver::FilterCallback::PrepareForEvaluation(bool, bool new_evaluation_point) {
-  if (!new_evaluation_point) return;
-  // The user memory holds the trial point.
+void TrustRegionSolver::FilterCallback::PrepareForEvaluation(bool evaluate_jacobians,
+                                                             bool new_evaluation_point) {
   TrustRegionSolver& s = *solver_;
-  s.veto_ = s.potential_->has_step_filters() && !s.potential_->IsStepValid(s.positions_.data());
-  if (s.options_.backtrack_rejected_steps) {
-    s.rejected_ = s.positions_;
-    s.rejected_vetoed_ = s.veto_;
-    s.trial_since_callback_ = true;
+  if (new_evaluation_point) {
+    // The user memory holds the trial point.
+    s.veto_ = s.potential_->has_step_filters() && !s.potential_->IsStepValid(s.positions_.data());
+    if (s.options_.backtrack_rejected_steps) {
+      s.rejected_ = s.positions_;
+      s.rejected_vetoed_ = s.veto_;
+      s.trial_since_callback_ = true;
+    }
+    if (s.cache_) s.cache_->Invalidate();
   }
+  // The terms' Newton models at this point, on the thread pool.
+  if (s.cache_ && !s.veto_ && !s.cache_->Has(evaluate_jacobians)) {
+    s.cache_->Prepare(s.positions_.data(), evaluate_jacobians, s.filter_);
+  }
+}
+
+ceres::CallbackReturnType TrustRegionSolver::FitCallback::operator()(
+    const ceres::IterationSummary& summary) {
+  // kTrustRegion: the filter of the next models from this step's fit
+  // (Ceres's relative decrease: actual over the model's predicted decrease).
+  if (summary.iteration > 0) {
+    solver_->filter_ = summary.relative_decrease < kTrustRegionFilterSwitch
+                           ? EigenvalueFilter::kAbsolute
+                           : EigenvalueFilter::kClamp;
+  }
+  return ceres::SOLVER_CONTINUE;
 }
 
 ceres::CallbackReturnType TrustRegionSolver::BacktrackCallback::operator()(

@@ -66,6 +66,8 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include "core/term_hessian.h"
+#include "solver/newton_model_cache.h"
 #include "solver/step_solver.h"
 #include "solver/stopping_callback.h"
 
@@ -84,6 +86,17 @@ class TrustRegionSolver : public StepSolver {
    public:
     explicit FilterCallback(TrustRegionSolver* solver) : solver_(solver) {}
     void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override;
+
+   private:
+    TrustRegionSolver* solver_;
+  };
+
+  // kTrustRegion projection: picks the next models' eigenvalue filter from
+  // the last step's fit.
+  class FitCallback : public ceres::IterationCallback {
+   public:
+    explicit FitCallback(TrustRegionSolver* solver) : solver_(solver) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override;
 
    private:
     TrustRegionSolver* solver_;
@@ -134,6 +147,11 @@ class TrustRegionSolver : public StepSolver {
   static constexpr int kMaxShortBacktracks = 20;
   FilterCallback filter_callback_{this};
   BacktrackCallback backtrack_callback_{this};
+  FitCallback fit_callback_{this};
+  // newton, dogleg: the terms' models for the point Ceres evaluates, and the
+  // eigenvalue filter they are projected with.
+  std::unique_ptr<NewtonModelCache> cache_;
+  EigenvalueFilter filter_ = EigenvalueFilter::kClamp;
   std::unique_ptr<StoppingCallback> callback_;
 };
 

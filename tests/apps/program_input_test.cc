@@ -108,8 +108,18 @@ TEST_F(ProgramInput, LibraryErrorsNameTheFlag) {
       {"--optimizer=projected_newton --hessian_projection=sometimes",
        "ipstep: error: flag: --hessian_projection: unknown projection 'sometimes'"},
       {"--hessian_projection=when_indefinite",
-       "ipstep: error: flag: --hessian_projection: applies to projected_newton, not to "
-       "--optimizer=newton"},
+       "ipstep: error: flag: --hessian_projection: when_indefinite needs the assembled Hessian: "
+       "projected_newton only (newton takes always, abs or trust_region)"},
+      {"--optimizer=dogleg --hessian_projection=progressive",
+       "ipstep: error: flag: --hessian_projection: progressive needs the assembled Hessian"},
+      {"--optimizer=lbfgs --hessian_projection=abs",
+       "ipstep: error: flag: --hessian_projection: applies to newton, dogleg and "
+       "projected_newton, not to --optimizer=lbfgs"},
+      {"--optimizer=projected_newton --sparse_library=CX_SPARSE",
+       "ipstep: error: flag: --sparse_library: projected_newton uses SUITE_SPARSE (CHOLMOD) or "
+       "EIGEN_SPARSE, not 'CX_SPARSE'"},
+      {"--linear_solver_ordering=METIS",
+       "ipstep: error: flag: --linear_solver_ordering: unknown ordering 'METIS' (AMD or NESDIS)"},
       {"--stats=/nonexistent_dir/x.csv",
        "ipstep: error: flag: --stats: cannot write '/nonexistent_dir/x.csv'"},
       // Opened before the run: the error comes before any report.

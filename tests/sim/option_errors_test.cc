@@ -46,7 +46,7 @@ TEST(OptionErrors, OptimizerOptionsNameTheirField) {
       {[](OptimizerOptions* o) { o->tolerance = 0.0; }, "OptimizerOptions.tolerance"},
       {[](OptimizerOptions* o) { o->max_iterations = -1; }, "OptimizerOptions.max_iterations"},
       {[](OptimizerOptions* o) { o->time_limit = -1.0; }, "OptimizerOptions.time_limit"},
-      {[](OptimizerOptions* o) { o->num_threads = 0; }, "OptimizerOptions.num_threads"},
+      {[](OptimizerOptions* o) { o->num_threads = -1; }, "OptimizerOptions.num_threads"},
       {[](OptimizerOptions* o) { o->initial_trust_region_radius = 1e300; },
        "OptimizerOptions.initial_trust_region_radius"},
       {[](OptimizerOptions* o) { o->lbfgs_rank = -1; }, "OptimizerOptions.lbfgs_rank"},

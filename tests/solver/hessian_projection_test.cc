@@ -1,7 +1,10 @@
-// projected_newton's Hessian projection (OptimizerOptions::hessian_projection,
-// solver/projected_newton_solver.h): with kWhenIndefinite the exact Hessian's
-// step is taken wherever the assembled sum is positive definite, and the
-// projected model's otherwise.
+// The Newton optimisers' Hessian projection (OptimizerOptions::hessian_projection,
+// solver/projected_newton_solver.h, solver/trust_region_solver.h): with
+// kWhenIndefinite the exact Hessian's step is taken wherever the assembled sum
+// is positive definite, and the projected model's otherwise; kProgressive
+// projects only terms at nodes whose force imbalance is above the tolerance;
+// kAbsolute filters eigenvalues by their magnitude, kTrustRegion picks clamp
+// or absolute from the last step's fit.
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -42,7 +45,7 @@ struct Solve {
   std::vector<double> residuals;
   StepReport report;
   Eigen::VectorXd x;
-  long exact = 0, projected = 0;
+  long exact = 0, projected = 0, absolute = 0, projected_terms = 0, term_models = 0;
 };
 
 Solve StepWith(const Scene& scene, SimulationOptions options, HessianProjection projection) {
@@ -61,7 +64,18 @@ Solve StepWith(const Scene& scene, SimulationOptions options, HessianProjection 
   solve.x = sim.state().x;
   solve.exact = solver->exact_directions();
   solve.projected = solver->projected_directions();
+  solve.absolute = solver->absolute_directions();
+  solve.projected_terms = solver->projected_terms();
+  solve.term_models = solver->term_models();
   return solve;
+}
+
+// The kicked compressed chain below: every spring indefinite, the sum with
+// the inertia definite.
+Scene KickedChain(int n) {
+  Scene scene = PinnedChain(n, 0.9);
+  for (int i = 1; i + 1 < n; ++i) scene.velocities[2 * i + 1] = 3.0 * std::sin(0.7 * i);
+  return scene;
 }
 
 // A compressed chain kicked sideways, backward Euler: every spring's Hessian
@@ -69,9 +83,7 @@ Solve StepWith(const Scene& scene, SimulationOptions options, HessianProjection 
 // discards the springs' negative curvature and converges linearly; the exact
 // steps converge quadratically to the same step.
 TEST(HessianProjection, ExactStepsWhereTheSumIsDefiniteConvergeQuadratically) {
-  const int n = 10;
-  Scene scene = PinnedChain(n, 0.9);
-  for (int i = 1; i + 1 < n; ++i) scene.velocities[2 * i + 1] = 3.0 * std::sin(0.7 * i);
+  const Scene scene = KickedChain(10);
   const SimulationOptions options = Options("backward_euler", "projected_newton", 0.01, 1e-9);
   const Solve projected = StepWith(scene, options, HessianProjection::kAlways);
   const Solve exact = StepWith(scene, options, HessianProjection::kWhenIndefinite);
@@ -113,6 +125,89 @@ TEST(HessianProjection, IndefiniteSumsFallBackToTheProjectedModel) {
   EXPECT_EQ(fallback.projected, 3);
   EXPECT_EQ(fallback.residuals, projected.residuals);
   EXPECT_EQ(fallback.x, projected.x);
+}
+
+// Progressive projection on the kicked chain: its first matrix of each
+// iteration has no term projected (no node is above the largest share of the
+// stopping measure), and the sum is definite here, so it takes the exact
+// steps, as when_indefinite, projecting nothing.
+TEST(HessianProjection, ProgressiveTakesExactStepsWhereTheSumIsDefinite) {
+  const Scene scene = KickedChain(10);
+  const SimulationOptions options = Options("backward_euler", "projected_newton", 0.01, 1e-9);
+  const Solve exact = StepWith(scene, options, HessianProjection::kWhenIndefinite);
+  const Solve progressive = StepWith(scene, options, HessianProjection::kProgressive);
+  ASSERT_TRUE(progressive.report.converged) << progressive.report.status;
+  EXPECT_EQ(progressive.report.iterations, exact.report.iterations);
+  EXPECT_EQ(progressive.projected_terms, 0);
+  EXPECT_EQ(progressive.exact, progressive.report.iterations);
+  EXPECT_EQ(progressive.x, exact.x);
+}
+
+// Quasi-static, the chain would buckle: the exact sum is indefinite, so
+// progressive projects terms until the partly projected sum is definite (its
+// directions are not the fully projected ones) and reaches the equilibrium
+// kAlways reaches, in no more iterations.
+TEST(HessianProjection, ProgressiveProjectsUntilTheSumIsDefinite) {
+  const int n = 10;
+  Scene scene = PinnedChain(n, 0.9);
+  for (int i = 1; i + 1 < n; ++i) scene.positions[2 * i + 1] = 1e-3 * std::sin(0.7 * i);
+  const SimulationOptions options = Options("quasi_static", "projected_newton", 0.01, 1e-9);
+  const Solve projected = StepWith(scene, options, HessianProjection::kAlways);
+  const Solve progressive = StepWith(scene, options, HessianProjection::kProgressive);
+  ASSERT_TRUE(projected.report.converged) << projected.report.status;
+  ASSERT_TRUE(progressive.report.converged) << progressive.report.status;
+  EXPECT_GT(progressive.exact, 0);
+  EXPECT_GT(progressive.projected_terms, 0);
+  EXPECT_LE(progressive.report.iterations, projected.report.iterations);
+  EXPECT_LT((progressive.x - projected.x).lpNorm<Eigen::Infinity>(), 1e-8);
+  std::printf("buckling chain: %d iterations projected, %d progressive\n",
+              projected.report.iterations, progressive.report.iterations);
+}
+
+// The absolute-value filter keeps a negative eigenvalue's magnitude; the
+// clamp keeps (almost) nothing of it.
+TEST(HessianProjection, AbsoluteFilterKeepsTheMagnitude) {
+  TermModel model;
+  model.hessian = TermMatrix::Zero(3, 3);
+  model.hessian.diagonal() << 4.0, -2.0, 1.0;
+  model.gradient = TermVector::Zero(3);
+  ProjectedHessian clamped, absolute;
+  ProjectHessian(model, &clamped, EigenvalueFilter::kClamp);
+  ProjectHessian(model, &absolute, EigenvalueFilter::kAbsolute);
+  auto matrix = [](const ProjectedHessian& p) -> TermMatrix {
+    return p.vectors * p.values.asDiagonal() * p.vectors.transpose();
+  };
+  EXPECT_NEAR(matrix(absolute)(1, 1), 2.0, 1e-14);
+  EXPECT_NEAR(matrix(clamped)(1, 1), kCurvatureFloor * 4.0, 1e-14);
+  EXPECT_NEAR(matrix(absolute)(0, 0), 4.0, 1e-14);
+  EXPECT_NEAR(matrix(absolute)(2, 2), 1.0, 1e-14);
+}
+
+// A chain pinned at 0.3 of its length, quasi-static, released from a tall
+// zig-zag: clamping calls the compressed springs' transverse modes free, and
+// some full steps overshoot (the fit is poor), so trust_region switches to
+// the absolute filter for some iterations; kAbsolute uses it on every one,
+// kAlways on none. All three converge.
+TEST(HessianProjection, TrustRegionSwitchesToAbsoluteAfterAPoorFit) {
+  const int n = 8;
+  Scene scene = PinnedChain(n, 0.3);
+  for (int i = 1; i + 1 < n; ++i) {
+    scene.positions[2 * i + 1] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.3 * std::sin(i));
+  }
+  const SimulationOptions options = Options("quasi_static", "projected_newton", 0.01, 1e-8);
+  const Solve clamp = StepWith(scene, options, HessianProjection::kAlways);
+  const Solve absolute = StepWith(scene, options, HessianProjection::kAbsolute);
+  const Solve adaptive = StepWith(scene, options, HessianProjection::kTrustRegion);
+  ASSERT_TRUE(clamp.report.converged) << clamp.report.status;
+  ASSERT_TRUE(absolute.report.converged) << absolute.report.status;
+  ASSERT_TRUE(adaptive.report.converged) << adaptive.report.status;
+  EXPECT_EQ(clamp.absolute, 0);
+  EXPECT_EQ(absolute.absolute, absolute.report.iterations);
+  EXPECT_GT(adaptive.absolute, 0);
+  EXPECT_LT(adaptive.absolute, adaptive.report.iterations);
+  std::printf("zig-zag chain: clamp %d, abs %d, trust_region %d iterations (%ld abs)\n",
+              clamp.report.iterations, absolute.report.iterations, adaptive.report.iterations,
+              adaptive.absolute);
 }
 
 }  // namespace
