@@ -80,6 +80,15 @@ int Run(const EffectRegistry& registry) {
   std::printf("integrator %s, optimizer %s, dt %g s, %d steps, tolerance %g m/s\n",
               sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer),
               sim.time_step(), sim.steps(), options.optimizer.tolerance);
+  if (sim.integrator().is_variational()) {
+    std::string solver = sim.step_solver().LinearSolverDescription();
+    if (solver.empty()) solver = "no linear solver";
+    if (UsesNewtonModel(options.optimizer.optimizer)) {
+      solver = std::string("Hessian projection ") +
+               HessianProjectionName(options.optimizer.hessian_projection) + ", " + solver;
+    }
+    std::printf("solver: %s, %d threads\n", solver.c_str(), ThreadCount(options.optimizer));
+  }
   std::printf("active effects:\n");
   if (sim.integrator().has_inertia() && sim.integrator().is_variational()) {
     std::printf("  inertia: %d terms\n", sim.potential().CountTerms(TermKind::kInertia));

@@ -33,8 +33,8 @@ DEFINE_string(linear_solver, "",
               "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
 DEFINE_string(sparse_library, "",
               "Sparse Cholesky library: newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | "
-              "EIGEN_SPARSE (default CX_SPARSE); projected_newton: SUITE_SPARSE (CHOLMOD "
-              "supernodal) | EIGEN_SPARSE (SimplicialLDLT) (default SUITE_SPARSE)");
+              "EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD) | EIGEN_SPARSE "
+              "(SimplicialLDLT); default SUITE_SPARSE");
 DEFINE_string(linear_solver_ordering, "",
               "newton/dogleg/gauss_newton/projected_newton: fill-reducing ordering of the sparse "
               "Cholesky, AMD | NESDIS (nested dissection, METIS); default: NESDIS for 3D solids "

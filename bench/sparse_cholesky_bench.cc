@@ -3,7 +3,7 @@
 // step weights and the state are a real step's) factorised by each sparse
 // Cholesky of solver/sparse_cholesky.h, timed alone (docs/benchmarks.md,
 // "Sparse Cholesky"):
-//   sparse_cholesky_bench SCENE [integrator=quasi_static] [repeats=3]
+//   sparse_cholesky_bench SCENE [integrator=quasi_static] [repeats=3] [grid_size]
 // Prints the matrix (unknowns, nonzeros of its lower triangle), the time of
 // one assembly of the matrix (every term's model, projected, summed), and per
 // library and ordering: nonzeros of the factor, the symbolic analysis, the
@@ -43,7 +43,7 @@ struct Case {
 int main(int argc, char** argv) {
   using namespace ipstep;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: sparse_cholesky_bench SCENE [integrator] [repeats]\n");
+    std::fprintf(stderr, "usage: sparse_cholesky_bench SCENE [integrator] [repeats] [grid_size]\n");
     return 2;
   }
   const std::string integrator = argc > 2 ? argv[2] : "quasi_static";
@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   try {
     SceneLoadOptions load;
     load.extra_effects = DefaultEffects().UserNames();
+    if (argc > 4) load.grid_size = std::atoi(argv[4]);
     const Scene scene = LoadScene(argv[1], load);
     SimulationOptions options;
     options.integrator.name = integrator;

@@ -252,7 +252,11 @@ ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& o) {
   SetCommonOptions(o, &c);
   c.minimizer_type = ceres::TRUST_REGION;
   c.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  c.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
+  // SUITE_SPARSE (CHOLMOD): measured against CX_SPARSE with newton, 20
+  // steps: equal on the small scenes (cloth 6.4 against 6.5 ms/step,
+  // cantilever_2d 3.0 against 2.8), faster from about 10^4 unknowns (cloth
+  // grid 40: 30 against 36, hanging_square grid 81: 615 against 1,099).
+  c.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   c.num_threads = ThreadCount(o);
   if (o.optimizer != Optimizer::kDogleg) {
     c.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;

@@ -5,10 +5,10 @@
 //
 //   name              path                      Ceres options
 //   newton            ceres::Problem, projected TRUST_REGION, LEVENBERG_MARQUARDT,
-//                     Newton model per term     SPARSE_NORMAL_CHOLESKY, CX_SPARSE,
+//                     Newton model per term     SPARSE_NORMAL_CHOLESKY, SUITE_SPARSE,
 //                     (solver/newton_model_cost.h)  initial_trust_region_radius 1e16
 //   dogleg            same model                TRUST_REGION, DOGLEG (TRADITIONAL),
-//                                               SPARSE_NORMAL_CHOLESKY, CX_SPARSE
+//                                               SPARSE_NORMAL_CHOLESKY, SUITE_SPARSE
 //   gauss_newton      ceres::Problem, the       as newton: Ceres's own J^T J model
 //                     residual blocks as they are
 //   lbfgs             ceres::GradientProblem    LINE_SEARCH, LBFGS rank 20, WOLFE,
@@ -17,8 +17,9 @@
 //   ncg               ceres::GradientProblem    LINE_SEARCH, NONLINEAR_CONJUGATE_GRADIENT,
 //                                               FLETCHER_REEVES, WOLFE
 //   gradient_descent  ceres::GradientProblem    LINE_SEARCH, STEEPEST_DESCENT, WOLFE
-//   projected_newton  not Ceres: Eigen sparse LDL^T and an Armijo line search
-//                     (solver/projected_newton_solver.h), the same term models
+//   projected_newton  not Ceres: CHOLMOD LL^T (solver/sparse_cholesky.h) and an
+//                     Armijo line search (solver/projected_newton_solver.h), the
+//                     same term models
 #pragma once
 
 #include <string>

@@ -48,6 +48,17 @@ ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, co
   BuildStructure();
 }
 
+std::string ProjectedNewtonSolver::LinearSolverDescription() const {
+  if (library_ == SparseLibrary::kEigen) return "Eigen SimplicialLDLT (EIGEN_SPARSE), AMD ordering";
+  const FillOrdering ordering = ordering_ == FillOrdering::kAutomatic
+                                    ? ChooseOrdering(state_->dimension, num_free_)
+                                    : ordering_;
+  return std::string("CHOLMOD LL^T (SUITE_SPARSE), ") +
+         (ordering == FillOrdering::kNestedDissection ? "nested dissection (METIS) of the nodes"
+                                                      : "AMD") +
+         " ordering";
+}
+
 void ProjectedNewtonSolver::BuildStructure() {
   const auto start = Clock::now();
   const int dim = state_->dimension;

@@ -65,6 +65,7 @@ class ProjectedNewtonSolver : public StepSolver {
   ProjectedNewtonSolver(IncrementalPotential* potential, const State* state,
                         const OptimizerOptions& options);
   StepSolveResult Solve(Eigen::VectorXd* x) override;
+  std::string LinearSolverDescription() const override;
 
   // How a term's Hessian enters the assembled matrix: exact, or projected
   // with eigenvalues clamped or by their magnitude (core/term_hessian.h).

@@ -5,8 +5,9 @@
 // scene whose terms do not change analyses once for the whole run.
 //
 // Two libraries:
-//  * SUITE_SPARSE (the default): CHOLMOD's supernodal LL^T (dense BLAS
-//    kernels on the supernodes), with a fill-reducing ordering chosen
+//  * SUITE_SPARSE (the default): CHOLMOD's LL^T, supernodal (dense BLAS
+//    kernels on the supernodes) where the fill is large enough, else
+//    simplicial (CHOLMOD's own choice), with a fill-reducing ordering chosen
 //    below. CHOLMOD is quiet (Common.print = 0) and stops at the first
 //    non-positive pivot (quick_return_if_not_posdef), so a definiteness test
 //    on an indefinite matrix costs only the columns up to that pivot.
@@ -62,7 +63,7 @@ class SparseCholesky {
   // Solves with the last successful factorisation. False if the result is
   // not finite.
   virtual bool Solve(const Eigen::VectorXd& rhs, Eigen::VectorXd* solution) = 0;
-  // e.g. "CHOLMOD supernodal LL^T, NESDIS ordering".
+  // e.g. "CHOLMOD supernodal LL^T, nested dissection (METIS) ordering".
   virtual std::string Description() const = 0;
   // Nonzeros of the factor after the analysis (0 before).
   virtual double FactorNonZeros() const = 0;

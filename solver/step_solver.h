@@ -40,6 +40,9 @@ class StepSolver {
   // x: full position vector; constrained nodes already at their prescribed
   // positions, free nodes at the initial guess. On return, the final iterate.
   virtual StepSolveResult Solve(Eigen::VectorXd* x) = 0;
+  // How the Newton systems are solved, for the programs' run header, e.g.
+  // "CHOLMOD LL^T (SUITE_SPARSE), AMD ordering"; empty without one.
+  virtual std::string LinearSolverDescription() const { return ""; }
   void set_iteration_sink(IterationSink sink) { sink_ = std::move(sink); }
 
  protected:

@@ -117,6 +117,20 @@ void TrustRegionSolver::BuildProblem() {
   built_version_ = potential_->structure_version();
 }
 
+std::string TrustRegionSolver::LinearSolverDescription() const {
+  std::string text =
+      std::string("Ceres ") + ceres::LinearSolverTypeToString(ceres_options_.linear_solver_type);
+  if (ceres_options_.linear_solver_type == ceres::SPARSE_NORMAL_CHOLESKY ||
+      ceres_options_.linear_solver_type == ceres::SPARSE_SCHUR) {
+    text += std::string(" with ") + ceres::SparseLinearAlgebraLibraryTypeToString(
+                                        ceres_options_.sparse_linear_algebra_library_type);
+    if (ceres_options_.sparse_linear_algebra_library_type == ceres::SUITE_SPARSE) {
+      text += node_order_.empty() ? ", AMD ordering" : ", nested dissection (METIS) of the nodes";
+    }
+  }
+  return text;
+}
+
 void TrustRegionSolver::ChooseOrdering() {
   node_order_.clear();
   if (ceres_options_.linear_solver_type != ceres::SPARSE_NORMAL_CHOLESKY ||

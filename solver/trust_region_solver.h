@@ -78,6 +78,7 @@ class TrustRegionSolver : public StepSolver {
   TrustRegionSolver(IncrementalPotential* potential, const State* state,
                     const OptimizerOptions& options);
   StepSolveResult Solve(Eigen::VectorXd* x) override;
+  std::string LinearSolverDescription() const override;
 
   ceres::Problem& problem() { return *problem_; }
 
