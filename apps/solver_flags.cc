@@ -30,7 +30,9 @@ DEFINE_int32(num_threads, 0,
              "the same iterates for any count) and Ceres's own evaluation (gauss_newton), in "
              "[1, 256]; default: the machine's hardware threads");
 DEFINE_string(linear_solver, "",
-              "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY)");
+              "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY; "
+              "e.g. CGNR); projected_newton: SPARSE_CHOLESKY (default) | CG (conjugate gradients "
+              "with incomplete Cholesky, inexact Newton)");
 DEFINE_string(sparse_library, "",
               "Sparse Cholesky library: newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | "
               "EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD) | EIGEN_SPARSE "
@@ -80,7 +82,8 @@ namespace {
 void RequireOptimizerFamily(const char* flag, OptimizerFamily family, Optimizer optimizer) {
   if (FlagIsDefault(flag) || FamilyOf(optimizer) == family) return;
   if (FamilyOf(optimizer) == OptimizerFamily::kEigenNewton &&
-      (std::string(flag) == "sparse_library" || std::string(flag) == "linear_solver_ordering")) {
+      (std::string(flag) == "sparse_library" || std::string(flag) == "linear_solver_ordering" ||
+       std::string(flag) == "linear_solver")) {
     return;  // the sparse Cholesky's flags apply to projected_newton too
   }
   const char* names = family == OptimizerFamily::kTrustRegion ? "newton, dogleg and gauss_newton"

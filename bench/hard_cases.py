@@ -5,6 +5,7 @@ steps, substepped steps, the energy change, the largest energy growth of a
 converged step and the smallest contact distance.
 
   bench/hard_cases.py --ipstep build/apps/ipstep [--subset ci|full] [--jobs 2]
+                      [--flags "--hessian_projection=abs"]
 
 Exit code 1 if a target does not hold (listed after the table):
   * every run exits with 0 (done) or 3 (a step failed even as substeps);
@@ -61,12 +62,12 @@ def scene_path(scene):
     return os.path.join(HARD, scene) if scene.endswith(".json") else scene
 
 
-def run(ipstep, label, scene, flags, integrator, optimizer):
+def run(ipstep, label, scene, flags, integrator, optimizer, extra):
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "stats.csv")
         command = [ipstep, "--scene=" + scene_path(scene), "--integrator=" + integrator,
                    "--optimizer=" + optimizer, "--on_failure=continue", "--noprogress",
-                   "--stats=" + stats] + flags
+                   "--stats=" + stats] + flags + extra
         done = subprocess.run(command, capture_output=True, text=True, timeout=1800)
         rows = []
         if os.path.exists(stats):
@@ -113,7 +114,10 @@ def main():
     parser.add_argument("--optimizers", default=None,
                         help="comma-separated (default: newton,lbfgs,projected_newton; ci: newton)")
     parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--flags", default="",
+                        help="extra ipstep flags for every run, e.g. --hessian_projection=abs")
     args = parser.parse_args()
+    extra = args.flags.split()
     optimizers = (args.optimizers or ("newton" if args.subset == "ci" else
                                       "newton,lbfgs,projected_newton")).split(",")
     jobs = []
@@ -122,7 +126,7 @@ def main():
             continue
         for integrator in integrators:
             for optimizer in optimizers:
-                jobs.append((args.ipstep, label, scene, flags, integrator, optimizer))
+                jobs.append((args.ipstep, label, scene, flags, integrator, optimizer, extra))
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         results = list(pool.map(lambda job: run(*job), jobs))
     problems = []

@@ -1,15 +1,17 @@
 #!/bin/bash
-# projected_newton with --hessian_projection=always (every term's Hessian
-# projected to PSD) against when_indefinite (the exact Hessian's step when the
-# assembled sum is positive definite): failed and substepped steps,
-# iterations and milliseconds per step, one markdown row per run
-# (docs/benchmarks.md, "Hessian projection"). Backward Euler unless a run
-# says otherwise, tolerance 1e-5 m/s, --max_substeps=8 --on_failure=continue.
+# The Hessian projections (--hessian_projection) of the Newton optimisers on
+# the same runs: per run and optimiser, for each projection, failed and
+# substepped steps, iterations and milliseconds per step, one markdown row per
+# run and optimiser (docs/benchmarks.md, "Hessian projection"). Backward Euler
+# unless a run says otherwise, tolerance 1e-5 m/s, --max_substeps=8
+# --on_failure=continue. newton takes the per-term projections only (always,
+# abs, trust_region); projected_newton all five.
 #
 #   bench/hessian_projection.sh BUILD_DIR [SOURCE_DIR]
 #
 # RUNS="..." in the environment replaces the default runs (one per line:
-# the ipstep arguments after --optimizer).
+# the ipstep arguments after --optimizer); OPTIMIZERS="..." the optimisers
+# (default: projected_newton newton).
 set -euo pipefail
 build=$1
 source=${2:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -29,16 +31,31 @@ default_runs="--scene=cloth
 --scene=$source/problems/self_contact/cloth_twist.json --steps=200
 --scene=$source/problems/self_contact/cloth_twist.json --integrator=newmark --dt=0.001 --steps=790"
 runs=${RUNS:-$default_runs}
-echo "| run | always: failed, substepped | iterations/step | ms/step | when_indefinite: failed, substepped | iterations/step | ms/step |"
-echo "|---|---|---:|---:|---|---:|---:|"
+optimizers=${OPTIMIZERS:-projected_newton newton}
+projections="always abs trust_region when_indefinite progressive"
+header="| run | optimiser |"
+rule="|---|---|"
+for projection in $projections; do
+  header="$header $projection: failed, substepped | it/step | ms/step |"
+  rule="$rule---|---:|---:|"
+done
+echo "$header"
+echo "$rule"
 while IFS= read -r run; do
-  row="| \`${run//$source\//}\` |"
-  for projection in always when_indefinite; do
-    # shellcheck disable=SC2086
-    line=$("$build/apps/ipstep" $run --optimizer=projected_newton --hessian_projection=$projection \
-      --max_substeps=8 --on_failure=continue --progress=false 2>&1 | grep '^done:' || true)
-    read -r f s it ms < <(echo "$line" | sed 's/done: [0-9]* steps, \([0-9]*\) failed, \([0-9]*\) substepped, \([0-9.]*\) iterations\/step, \([0-9.]*\) ms\/step.*/\1 \2 \3 \4/')
-    row="$row $f, $s | $it | $ms |"
+  for optimizer in $optimizers; do
+    row="| \`${run//$source\//}\` | $optimizer |"
+    for projection in $projections; do
+      if [ "$optimizer" != projected_newton ] &&
+        { [ "$projection" = when_indefinite ] || [ "$projection" = progressive ]; }; then
+        row="$row — | — | — |"
+        continue
+      fi
+      # shellcheck disable=SC2086
+      line=$("$build/apps/ipstep" $run --optimizer=$optimizer --hessian_projection=$projection \
+        --max_substeps=8 --on_failure=continue --progress=false 2>&1 | grep '^done:' || true)
+      read -r f s it ms < <(echo "$line" | sed 's/done: [0-9]* steps, \([0-9]*\) failed, \([0-9]*\) substepped, \([0-9.]*\) iterations\/step, \([0-9.]*\) ms\/step.*/\1 \2 \3 \4/')
+      row="$row $f, $s | $it | $ms |"
+    done
+    echo "$row"
   done
-  echo "$row"
 done <<< "$runs"

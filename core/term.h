@@ -77,6 +77,12 @@ struct Term {
   // (inertia always, Rayleigh damping, plane gaps), or where the term chooses
   // it (the quasi-static gravity potential, energies/gravity_potential.h).
   bool gauss_newton_model = false;
+  // The energy itself is affine in x (the quasi-static gravity potential,
+  // written as a square for Ceres): its exact Hessian is zero, and the
+  // Gauss-Newton curvature its residual form carries is a model artefact.
+  // Newton models that ask for the exact Hessian (projected_newton's
+  // when_indefinite and progressive) take zero.
+  bool affine_energy = false;
   // Two nodes whose residuals depend on d = x_1 - x_0 only (springs): the
   // Hessian is [[K, -K], [-K, K]] and the model is built over d (K).
   bool pair_difference = false;

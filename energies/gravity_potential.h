@@ -37,6 +37,8 @@ struct GravityPotential {
   // (solver/newton_model_cost.h): Newton methods keep the Gauss-Newton
   // curvature m|g| / (2e) described above.
   static constexpr bool kGaussNewtonModel = true;
+  // -m g.x: the exact Hessian is zero (Term::affine_energy).
+  static constexpr bool kAffineEnergy = true;
 
   template <typename T>
   bool operator()(const T* x, T* residual) const {

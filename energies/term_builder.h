@@ -27,6 +27,8 @@ constexpr int kOneResidualPerCoordinate = -1;
 //       is the exact Hessian (Term::gauss_newton_model);
 //   static constexpr bool kPairDifference = true;   two nodes, residuals of
 //       x_1 - x_0 only (Term::pair_difference);
+//   static constexpr bool kAffineEnergy = true;     the energy itself is affine
+//       in x: its exact Hessian is zero (Term::affine_energy);
 //   bool ResidualCurvature(const double* const* x, const double* c,
 //                          double* curvature) const;
 //       analytic sum_k c_k Hess(r_k) (Term::curvature); without it Newton
@@ -41,6 +43,11 @@ struct DeclaresPairDifference : std::false_type {};
 template <class F>
 struct DeclaresPairDifference<F, std::void_t<decltype(F::kPairDifference)>>
     : std::bool_constant<F::kPairDifference> {};
+template <class F, class = void>
+struct DeclaresAffineEnergy : std::false_type {};
+template <class F>
+struct DeclaresAffineEnergy<F, std::void_t<decltype(F::kAffineEnergy)>>
+    : std::bool_constant<F::kAffineEnergy> {};
 template <class F, class = void>
 struct HasResidualCurvature : std::false_type {};
 template <class F>
@@ -106,6 +113,7 @@ class TermBuilder {
         new F(functor));
     term->gauss_newton_model = DeclaresGaussNewtonModel<F>::value;
     term->pair_difference = DeclaresPairDifference<F>::value;
+    term->affine_energy = DeclaresAffineEnergy<F>::value;
     if constexpr (HasResidualCurvature<F>::value) {
       term->curvature = [functor](const double* const* x, const double* c, double* curvature) {
         return functor.ResidualCurvature(x, c, curvature);

@@ -186,6 +186,14 @@ SparseLibrary ProjectedNewtonSparseLibrary(const OptimizerOptions& o) {
                        o.sparse_library + "'");
 }
 
+bool ProjectedNewtonUsesCg(const OptimizerOptions& o) {
+  if (o.linear_solver.empty() || o.linear_solver == "SPARSE_CHOLESKY") return false;
+  if (o.linear_solver == "CG") return true;
+  throw InputError(
+      "options", "OptimizerOptions.linear_solver",
+      "projected_newton uses SPARSE_CHOLESKY or CG, not '" + ClipInput(o.linear_solver) + "'");
+}
+
 FillOrdering ParseFillOrdering(const std::string& name) {
   if (name.empty()) return FillOrdering::kAutomatic;
   if (name == "AMD") return FillOrdering::kAmd;
@@ -228,7 +236,15 @@ void ValidateOptimizerOptions(const OptimizerOptions& o) {
             " (0: the default), got " + limits::FormatLimit(radius));
   }
   ParseFillOrdering(o.linear_solver_ordering);
-  if (o.optimizer == Optimizer::kProjectedNewton) ProjectedNewtonSparseLibrary(o);
+  if (o.optimizer == Optimizer::kProjectedNewton) {
+    ProjectedNewtonSparseLibrary(o);
+    if (ProjectedNewtonUsesCg(o) && !IsPerTermProjection(o.hessian_projection)) {
+      throw InputError("options", "OptimizerOptions.hessian_projection",
+                       std::string(HessianProjectionName(o.hessian_projection)) +
+                           " needs a definiteness test, which CG does not give: with "
+                           "linear_solver CG use always, abs or trust_region");
+    }
+  }
   if (!IsPerTermProjection(o.hessian_projection) && IsTrustRegion(o.optimizer)) {
     throw InputError("options", "OptimizerOptions.hessian_projection",
                      std::string(HessianProjectionName(o.hessian_projection)) +

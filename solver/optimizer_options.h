@@ -108,7 +108,11 @@ struct OptimizerOptions {
   // optimiser; the same iterates for any count: core/thread_pool.h) and for
   // Ceres's own evaluation (gauss_newton). 0: the machine's hardware threads.
   int num_threads = 0;
-  std::string linear_solver;  // e.g. SPARSE_NORMAL_CHOLESKY, DENSE_QR, CGNR
+  // newton, dogleg, gauss_newton: Ceres's linear solver (e.g.
+  // SPARSE_NORMAL_CHOLESKY, the default; DENSE_QR, CGNR); projected_newton:
+  // SPARSE_CHOLESKY (the default) or CG (preconditioned conjugate gradients,
+  // inexact Newton: solver/conjugate_gradient.h).
+  std::string linear_solver;
   // Sparse Cholesky library: SUITE_SPARSE (the default), CX_SPARSE or
   // EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD supernodal) or
   // EIGEN_SPARSE (SimplicialLDLT), solver/sparse_cholesky.h.
@@ -147,6 +151,9 @@ ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptio
 // projected_newton's library from options.sparse_library; throws InputError
 // naming OptimizerOptions.sparse_library for a library it cannot use.
 SparseLibrary ProjectedNewtonSparseLibrary(const OptimizerOptions& options);
+// projected_newton's linear solver: true for CG; throws InputError naming
+// OptimizerOptions.linear_solver for one it does not have.
+bool ProjectedNewtonUsesCg(const OptimizerOptions& options);
 // "" (automatic), "AMD" or "NESDIS"; throws InputError naming
 // OptimizerOptions.linear_solver_ordering otherwise.
 FillOrdering ParseFillOrdering(const std::string& name);

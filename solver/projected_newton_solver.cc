@@ -44,11 +44,16 @@ ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, co
   time_limit_ = options.time_limit > 0.0 ? options.time_limit : 1e9;
   projection_ = options.hessian_projection;
   library_ = ProjectedNewtonSparseLibrary(options);
+  use_cg_ = ProjectedNewtonUsesCg(options);
   ordering_ = ParseFillOrdering(options.linear_solver_ordering);
   BuildStructure();
 }
 
 std::string ProjectedNewtonSolver::LinearSolverDescription() const {
+  if (use_cg_) {
+    return "conjugate gradients with incomplete Cholesky (CG), forcing term min(0.1, "
+           "sqrt(r/r0))";
+  }
   if (library_ == SparseLibrary::kEigen) return "Eigen SimplicialLDLT (EIGEN_SPARSE), AMD ordering";
   const FillOrdering ordering = ordering_ == FillOrdering::kAutomatic
                                     ? ChooseOrdering(state_->dimension, num_free_)
@@ -121,6 +126,12 @@ bool ProjectedNewtonSolver::TermLocalHessian(int t, const double* x, double weig
   scratch->parameters.resize(blocks);
   for (int b = 0; b < blocks; ++b) scratch->parameters[b] = x + dim * term.nodes[b];
   TermModel& model = scratch->model;
+  if (kind == TermHessian::kExact && term.affine_energy) {
+    // The exact Hessian of an affine energy: zero (Term::affine_energy).
+    const int nt = dim * blocks;
+    std::fill_n(local_values_.data() + slot_offset_[t], nt * (nt + 1) / 2, 0.0);
+    return true;
+  }
   if (!scratch->evaluator.Evaluate(term, dim, weight, scratch->parameters.data(), true, &model)) {
     return false;
   }
@@ -255,6 +266,21 @@ bool ProjectedNewtonSolver::FactorizePositiveDefinite() {
 
 bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
                                              Eigen::VectorXd* direction) {
+  if (use_cg_) {
+    const auto start = Clock::now();
+    for (int d = 0; d < state_->num_dofs(); ++d) {
+      if (free_index_[d] >= 0) free_rhs_[free_index_[d]] = -gradient[d];
+    }
+    const bool ok = cg_.Solve(hessian_, free_rhs_, forcing_, &free_step_);
+    direction->setZero(state_->num_dofs());
+    if (ok) {
+      for (int d = 0; d < state_->num_dofs(); ++d) {
+        if (free_index_[d] >= 0) (*direction)[d] = free_step_[free_index_[d]];
+      }
+    }
+    timings_.factorize += Since(start);
+    return ok;
+  }
   EnsureAnalyzed();
   const auto start = Clock::now();
   // PSD projection leaves H singular only without inertia (quasi-static, free
@@ -420,6 +446,7 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
   double alpha = 0.0;
   model_fit_ = 1.0;
   projected_set_.assign(potential_->terms().size(), 0);
+  initial_residual_ = result.residual;
   for (int iteration = 0;; ++iteration) {
     if (sink_) {
       IterationRecord record;
@@ -444,6 +471,13 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       result.status = "time limit: " + std::to_string(time_limit_) + " s";
       break;
     }
+    // Inexact Newton (CG): the Newton system to a relative residual of
+    // min(0.1, sqrt(r / r0)), r the stopping measure (a forcing term after
+    // Eisenstat and Walker 1996): loose far from the solution, superlinear
+    // near it. Measured on the 36,300-DOF bar's backward-Euler step: a cap of
+    // 0.5 took 8 Newton iterations, 0.1 took 6 (the direct solver: 3).
+    forcing_ =
+        std::clamp(std::sqrt(result.residual / std::max(initial_residual_, 1e-300)), 1e-12, 0.1);
     std::string failure;
     if (!NewtonDirection(*x, &direction, &failure)) {
       result.status = failure;

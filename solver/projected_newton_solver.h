@@ -43,6 +43,7 @@
 #include "core/incremental_potential.h"
 #include "core/state.h"
 #include "core/term_hessian.h"
+#include "solver/conjugate_gradient.h"
 #include "solver/sparse_cholesky.h"
 #include "solver/step_solver.h"
 
@@ -96,6 +97,8 @@ class ProjectedNewtonSolver : public StepSolver {
   // Iterations whose terms were projected with the absolute-value filter
   // (kAbsolute, kTrustRegion).
   long absolute_directions() const { return absolute_directions_; }
+  // CG iterations of all solves (--linear_solver=CG).
+  long cg_iterations() const { return cg_.iterations(); }
   long term_models() const { return term_models_; }
 
  private:
@@ -172,6 +175,12 @@ class ProjectedNewtonSolver : public StepSolver {
   FillOrdering ordering_ = FillOrdering::kAutomatic;
   std::unique_ptr<SparseCholesky> cholesky_;
   FillOrdering cholesky_ordering_ = FillOrdering::kAutomatic;
+  // --linear_solver=CG: the iterative solver and this iteration's forcing
+  // term (relative residual of the Newton system).
+  bool use_cg_ = false;
+  PreconditionedConjugateGradient cg_;
+  double forcing_ = 0.1;
+  double initial_residual_ = 0.0;
   bool analyzed_ = false;
 
   // Scratch: per thread, and the terms' local matrices (slots_'s layout).

@@ -19,6 +19,7 @@
 #include "contact/friction.h"
 #include "contact/obstacles/sphere_obstacle.h"
 #include "core/term_hessian.h"
+#include "energies/elasticity/elasticity_effect.h"
 #include "energies/hookean_spring.h"
 #include "energies/quartic_spring.h"
 #include "energies/rayleigh_mass_damping.h"
@@ -353,6 +354,90 @@ TEST(NewtonModelCost, CeresSeesTheEnergyTheGradientAndTheProjectedHessian) {
       EXPECT_LE((j.transpose() * j - full_h).cwiseAbs().maxCoeff(), 1e-12 * scale);
       for (int a = 0; a < nt; ++a) {
         EXPECT_NEAR(gradient[a], full_g[a], 1e-12 * full_g.cwiseAbs().maxCoeff());
+      }
+    }
+  }
+}
+
+// An elastic element's Newton model in Ceres (a reduced model, one row per
+// F-space coordinate): the gradient exact; where every F-space eigenvalue is
+// positive (stretched) J^T J is the exact Hessian; under compression (negative
+// twist eigenvalues) J^T J - H is positive semi-definite, clamp adds what the
+// negative modes lack and the absolute filter twice that (up to the floor).
+TEST(NewtonModelCost, ElasticElementsProjectInFSpace) {
+  for (ElasticModel model :
+       {ElasticModel::kNeoHookean, ElasticModel::kStvk, ElasticModel::kFixedCorotated}) {
+    for (int dim : {2, 3}) {
+      ElasticMaterial material;
+      material.model = model;
+      material.youngs_modulus = 1e5;
+      material.poisson_ratio = 0.3;
+      const double rest[4][3] = {{0, 0, 0}, {1, 0.1, 0}, {0.2, 1, 0.1}, {0.1, 0.2, 1}};
+      const double* rest_nodes[4] = {rest[0], rest[1], rest[2], rest[3]};
+      const Term term = MakeElasticElementTerm(material, dim, rest_nodes, {0, 1, 2, 3});
+      ASSERT_TRUE(static_cast<bool>(term.reduced_model));
+      // The same element through the residual path: its exact Hessian.
+      Term generic = MakeElasticElementTerm(material, dim, rest_nodes, {0, 1, 2, 3});
+      generic.reduced_model = nullptr;
+      for (double scale : {1.05, 0.8}) {  // stretched, compressed
+        SCOPED_TRACE(std::string(ElasticModelName(model)) + " " + std::to_string(dim) + "D x" +
+                     std::to_string(scale));
+        std::vector<std::vector<double>> x(dim + 1, std::vector<double>(dim));
+        for (int a = 0; a <= dim; ++a) {
+          for (int k = 0; k < dim; ++k) {
+            x[a][k] = scale * rest[a][k] + (k == 0 ? 0.1 * rest[a][1] : 0.0);  // + a shear
+          }
+        }
+        TermModelEvaluator evaluator;
+        TermModel exact;
+        ASSERT_TRUE(evaluator.Evaluate(generic, dim, 1.0, Blocks(x).data(), true, &exact));
+        const int n = dim * (dim + 1);
+        Eigen::MatrixXd projection[2];
+        for (int f = 0; f < 2; ++f) {
+          const EigenvalueFilter filter =
+              f == 0 ? EigenvalueFilter::kClamp : EigenvalueFilter::kAbsolute;
+          const double weight = 1.0;
+          const bool veto = false;
+          NewtonModelCost cost(&term, dim, &weight, &veto, &filter);
+          EXPECT_EQ(cost.num_residuals(), dim * dim);
+          NewtonModelLoss loss(&cost);
+          ceres::Problem::Options options;
+          options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+          options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+          ceres::Problem problem(options);
+          std::vector<double*> blocks;
+          for (auto& b : x) blocks.push_back(b.data());
+          problem.AddResidualBlock(&cost, &loss, blocks);
+          double ceres_cost = 0.0;
+          std::vector<double> gradient;
+          ceres::CRSMatrix jacobian;
+          ASSERT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &ceres_cost, nullptr,
+                                       &gradient, &jacobian));
+          EXPECT_NEAR(ceres_cost, exact.energy, 1e-12 * std::abs(exact.energy));
+          for (int a = 0; a < n; ++a) {
+            EXPECT_NEAR(gradient[a], exact.gradient[a],
+                        1e-9 * exact.gradient.cwiseAbs().maxCoeff());
+          }
+          Eigen::MatrixXd j = Eigen::MatrixXd::Zero(jacobian.num_rows, jacobian.num_cols);
+          for (int r = 0; r < jacobian.num_rows; ++r) {
+            for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k) {
+              j(r, jacobian.cols[k]) = jacobian.values[k];
+            }
+          }
+          projection[f] = j.transpose() * j;
+        }
+        const Eigen::MatrixXd h = exact.hessian;
+        const double s = h.cwiseAbs().maxCoeff();
+        const Eigen::MatrixXd added = projection[0] - h;
+        const double smallest =
+            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(added).eigenvalues().minCoeff();
+        EXPECT_GE(smallest, -1e-9 * s);
+        if (scale > 1.0) {
+          EXPECT_LE(added.cwiseAbs().maxCoeff(), 1e-7 * s);  // nothing to clamp
+        } else {
+          EXPECT_GT(added.cwiseAbs().maxCoeff(), 1e-4 * s);  // something was clamped
+        }
+        EXPECT_LE((projection[1] - h - 2.0 * added).cwiseAbs().maxCoeff(), 1e-6 * s);
       }
     }
   }
