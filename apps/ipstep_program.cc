@@ -85,7 +85,7 @@ int Run(const EffectRegistry& registry) {
     if (solver.empty()) solver = "no linear solver";
     if (UsesNewtonModel(options.optimizer.optimizer)) {
       solver = std::string("Hessian projection ") +
-               HessianProjectionName(options.optimizer.hessian_projection) + ", " + solver;
+               HessianProjectionName(ResolveHessianProjection(options.optimizer)) + ", " + solver;
     }
     std::printf("solver: %s, %d threads\n", solver.c_str(), ThreadCount(options.optimizer));
   }

@@ -58,13 +58,16 @@ DEFINE_bool(mass_scaled_coordinates, true,
 DEFINE_bool(precise_energy, true,
             "line-search optimizers: sum energies in extended precision (resolves smaller "
             "force imbalances; costs one extra energy pass per evaluation)");
-DEFINE_string(hessian_projection, "always",
+DEFINE_string(hessian_projection, "default",
               "newton/dogleg/projected_newton: how each iteration's model is made positive "
-              "definite: always (every term's Hessian, negative eigenvalues clamped) | abs "
+              "definite: default (projected_newton: when_indefinite; newton, dogleg: always) | "
+              "always (every term's Hessian, negative eigenvalues clamped) | abs "
               "(every term's, negative eigenvalues by their magnitude) | trust_region (clamp or "
               "abs per iteration from the last step's model fit); projected_newton also: "
               "when_indefinite (the exact Hessian when the assembled sum is positive definite) | "
-              "progressive (only terms at nodes whose force imbalance is above the tolerance)");
+              "progressive (only terms at nodes whose force imbalance is above the tolerance); "
+              "newton/dogleg also: inertia (the exact Hessian where the nodes' inertia carries "
+              "the terms' negative curvature, clamped elsewhere)");
 DEFINE_double(newmark_beta, 0.25, "Newmark beta, in [1e-3, 1] (integrators/newmark.h)");
 DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in [0.5, 1] (integrators/newmark.h)");
 DEFINE_double(energy_tolerance, 0.1,

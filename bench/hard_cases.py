@@ -5,7 +5,7 @@ steps, substepped steps, the energy change, the largest energy growth of a
 converged step and the smallest contact distance.
 
   bench/hard_cases.py --ipstep build/apps/ipstep [--subset ci|full] [--jobs 2]
-                      [--flags "--hessian_projection=abs"]
+                      [--flags=--hessian_projection=abs]
 
 Exit code 1 if a target does not hold (listed after the table):
   * every run exits with 0 (done) or 3 (a step failed even as substeps);

@@ -4,8 +4,8 @@
 # substepped steps, iterations and milliseconds per step, one markdown row per
 # run and optimiser (docs/benchmarks.md, "Hessian projection"). Backward Euler
 # unless a run says otherwise, tolerance 1e-5 m/s, --max_substeps=8
-# --on_failure=continue. newton takes the per-term projections only (always,
-# abs, trust_region); projected_newton all five.
+# --on_failure=continue. newton takes always, abs, trust_region and inertia;
+# projected_newton all but inertia. PROJECTIONS="..." replaces the list.
 #
 #   bench/hessian_projection.sh BUILD_DIR [SOURCE_DIR]
 #
@@ -32,7 +32,7 @@ default_runs="--scene=cloth
 --scene=$source/problems/self_contact/cloth_twist.json --integrator=newmark --dt=0.001 --steps=790"
 runs=${RUNS:-$default_runs}
 optimizers=${OPTIMIZERS:-projected_newton newton}
-projections="always abs trust_region when_indefinite progressive"
+projections=${PROJECTIONS:-always abs trust_region when_indefinite progressive inertia}
 header="| run | optimiser |"
 rule="|---|---|"
 for projection in $projections; do
@@ -45,8 +45,9 @@ while IFS= read -r run; do
   for optimizer in $optimizers; do
     row="| \`${run//$source\//}\` | $optimizer |"
     for projection in $projections; do
-      if [ "$optimizer" != projected_newton ] &&
-        { [ "$projection" = when_indefinite ] || [ "$projection" = progressive ]; }; then
+      if { [ "$optimizer" != projected_newton ] &&
+        { [ "$projection" = when_indefinite ] || [ "$projection" = progressive ]; }; } ||
+        { [ "$optimizer" = projected_newton ] && [ "$projection" = inertia ]; }; then
         row="$row — | — | — |"
         continue
       fi

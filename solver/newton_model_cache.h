@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/incremental_potential.h"
+#include "core/state.h"
 #include "core/term_hessian.h"
 
 namespace ipstep {
@@ -23,8 +24,18 @@ class NewtonModelCache {
   // `terms`: the potential's indices of the terms given to Ceres as
   // NewtonModelCost; `weights`: per term, where its family's step weight is
   // read (StepContext).
+  // With `absorb` (the kInertia projection, solver/inertia_absorption.h) the
+  // terms include the inertia terms, every term has one row per coordinate,
+  // and models with jacobians are the absorbed ones; `state` tells free nodes.
   NewtonModelCache(const IncrementalPotential* potential, std::vector<int> terms,
-                   std::vector<const double*> weights);
+                   std::vector<const double*> weights, bool absorb = false,
+                   const State* state = nullptr);
+  // Rows of the k-th term's model (NewtonModelCost's residuals).
+  int rows(int k) const { return rows_[k]; }
+  // kInertia: terms whose negative curvature the inertia absorbed, and those
+  // it absorbed in part (the rest clamped), in the last prepared model.
+  long absorbed() const { return absorbed_count_; }
+  long clamped() const { return clamped_count_; }
 
   // Every term's weighted energy at x (full positions), and with `jacobians`
   // its model rows (residuals r^ and Jacobian J^ of NewtonModelCost) with
@@ -51,6 +62,9 @@ class NewtonModelCache {
     std::vector<const double*> parameters;
   };
   void Compute(int k, const double* x, bool jacobians, EigenvalueFilter filter, Scratch* scratch);
+  // The absorbed models (solver/inertia_absorption.h).
+  void PrepareAbsorbed(const double* x, EigenvalueFilter filter);
+  bool Evaluate(int k, const double* x, Scratch* scratch);
 
   const IncrementalPotential* potential_;
   std::vector<int> terms_;
@@ -62,6 +76,21 @@ class NewtonModelCache {
   std::vector<double> energy_;
   std::vector<char> ok_;
   std::vector<Scratch> scratch_;
+  // kInertia: per term whether it is an inertia term, its negative
+  // curvature's node blocks (at block_offset_) and whether it has any (and
+  // was absorbed); per node the blocks' sum and its inertia w_I m.
+  bool absorb_ = false;
+  const State* state_ = nullptr;
+  std::vector<char> inertia_;
+  std::vector<size_t> block_offset_;
+  std::vector<double> blocks_;
+  std::vector<char> negative_;
+  std::vector<double> share_;  // of the term's blocks the inertia takes
+  std::vector<double> node_share_;
+  std::vector<double> node_sum_;
+  std::vector<double> node_inertia_;
+  long absorbed_count_ = 0;
+  long clamped_count_ = 0;
   bool prepared_ = false;
   bool with_jacobians_ = false;
 };

@@ -48,7 +48,7 @@ NewtonModelCost::NewtonModelCost(const Term* term, int dimension, const double* 
       filter_(filter),
       cache_(cache),
       cache_index_(cache_index) {
-  set_num_residuals(ModelRows(*term, dimension));
+  set_num_residuals(cache != nullptr ? cache->rows(cache_index) : ModelRows(*term, dimension));
   *mutable_parameter_block_sizes() = term->cost->parameter_block_sizes();
 }
 
@@ -86,6 +86,11 @@ bool NewtonModelCost::Evaluate(double const* const* parameters, double* residual
   if (!evaluator.Evaluate(*term_, dimension_, *weight_, parameters, true, &model)) return false;
   energy_ = model.energy;
   ProjectHessian(model, &projected, filter_ != nullptr ? *filter_ : EigenvalueFilter::kClamp);
+  // Rows beyond the model's own (the inertia projection's full rows) are zero.
+  std::fill(residuals, residuals + n, 0.0);
+  for (int b = 0; b < blocks; ++b) {
+    if (jacobians[b] != nullptr) std::fill(jacobians[b], jacobians[b] + n * dimension_, 0.0);
+  }
   NewtonModelRows(*term_, dimension_, projected, residuals, jacobians);
   return true;
 }

@@ -77,22 +77,43 @@ bool UsesNewtonModel(Optimizer optimizer);
 //    growing over a step's iterations; every term when the sum is then not
 //    positive definite (after Fernandez-Fernandez, Loeschner, Bender 2025,
 //    "Progressively Projected Newton's Method").
-// The first three are positive semi-definite per term, so Ceres's newton and
-// dogleg can take them (Ceres's model must be a sum of squares); the last two
-// need the assembled matrix.
-enum class HessianProjection { kAlways, kAbsolute, kTrustRegion, kWhenIndefinite, kProgressive };
+//  * kInertia (newton and dogleg only): the exact Hessian wherever the nodes'
+//    inertia can carry the terms' negative curvature, clamped elsewhere
+//    (solver/inertia_absorption.h).
+// kAlways, kAbsolute, kTrustRegion and kInertia give one positive
+// semi-definite model per term, so Ceres's newton and dogleg can take them
+// (Ceres's model must be a sum of squares); kWhenIndefinite and kProgressive
+// need the assembled matrix; kInertia needs Ceres's residual blocks to carry
+// the inertia too (projected_newton's when_indefinite does more).
+// kDefault: the optimiser's own, chosen by measurement (docs/benchmarks.md,
+// "Hessian projection"): projected_newton kWhenIndefinite, newton and dogleg
+// kAlways (ResolveHessianProjection).
+enum class HessianProjection {
+  kDefault,
+  kAlways,
+  kAbsolute,
+  kTrustRegion,
+  kWhenIndefinite,
+  kProgressive,
+  kInertia
+};
 
 // The model fit (actual / predicted decrease of the last step) below which
 // kTrustRegion filters with the absolute value.
 constexpr double kTrustRegionFilterSwitch = 0.5;
 
-// "always", "abs", "trust_region", "when_indefinite", "progressive".
+// "default", "always", "abs", "trust_region", "when_indefinite", "progressive",
+// "inertia".
 const char* HessianProjectionName(HessianProjection projection);
 const char* HessianProjectionNames();  // comma-separated, for messages
 // Throws InputError naming the option OptimizerOptions.hessian_projection.
 HessianProjection ParseHessianProjection(const std::string& name);
-// True for the projections Ceres's newton and dogleg can use.
+// True for the projections Ceres's newton and dogleg can use (always, abs,
+// trust_region, inertia); projected_newton takes all but inertia.
 bool IsPerTermProjection(HessianProjection projection);
+struct OptimizerOptions;
+// options.hessian_projection, kDefault resolved for options.optimizer.
+HessianProjection ResolveHessianProjection(const OptimizerOptions& options);
 
 struct OptimizerOptions {
   Optimizer optimizer = Optimizer::kNewton;
@@ -139,7 +160,7 @@ struct OptimizerOptions {
   bool precise_line_search_energy = true;
   // newton, dogleg, projected_newton: how each iteration's model is made
   // positive definite (see HessianProjection).
-  HessianProjection hessian_projection = HessianProjection::kAlways;
+  HessianProjection hessian_projection = HessianProjection::kDefault;
 };
 
 // The Ceres options for the trust-region optimisers (newton, dogleg), validated

@@ -42,7 +42,7 @@ ProjectedNewtonSolver::ProjectedNewtonSolver(IncrementalPotential* potential, co
   tolerance_ = options.tolerance;
   max_iterations_ = options.max_iterations > 0 ? options.max_iterations : 100;
   time_limit_ = options.time_limit > 0.0 ? options.time_limit : 1e9;
-  projection_ = options.hessian_projection;
+  projection_ = ResolveHessianProjection(options);
   library_ = ProjectedNewtonSparseLibrary(options);
   use_cg_ = ProjectedNewtonUsesCg(options);
   ordering_ = ParseFillOrdering(options.linear_solver_ordering);
@@ -404,7 +404,9 @@ bool ProjectedNewtonSolver::NewtonDirection(const Eigen::VectorXd& x, Eigen::Vec
     case HessianProjection::kTrustRegion:
       kind = model_fit_ < kTrustRegionFilterSwitch ? TermHessian::kAbsolute : TermHessian::kClamped;
       break;
+    case HessianProjection::kDefault:  // resolved in the constructor
     case HessianProjection::kAlways:
+    case HessianProjection::kInertia:  // rejected by ValidateOptimizerOptions
       break;
   }
   if (!partial) {

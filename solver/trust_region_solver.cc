@@ -28,9 +28,10 @@ TrustRegionSolver::TrustRegionSolver(IncrementalPotential* potential, const Stat
     // evaluates on one, summing costs in block order (deterministic).
     ceres_options_.num_threads = 1;
   }
-  filter_ = options.hessian_projection == HessianProjection::kAbsolute ? EigenvalueFilter::kAbsolute
-                                                                       : EigenvalueFilter::kClamp;
-  if (options.hessian_projection == HessianProjection::kTrustRegion) {
+  const HessianProjection projection = ResolveHessianProjection(options);
+  filter_ = projection == HessianProjection::kAbsolute ? EigenvalueFilter::kAbsolute
+                                                       : EigenvalueFilter::kClamp;
+  if (projection == HessianProjection::kTrustRegion) {
     ceres_options_.callbacks.push_back(&fit_callback_);
   }
   callback_ = std::make_unique<StoppingCallback>(
@@ -69,17 +70,25 @@ void TrustRegionSolver::BuildProblem() {
   };
   // The terms whose Newton models the cache computes (in parallel, before
   // Ceres evaluates: solver/newton_model_cache.h).
+  // With the inertia projection (solver/inertia_absorption.h) the inertia
+  // terms' models change too: they are cached as well.
+  const bool absorb = ResolveHessianProjection(options_) == HessianProjection::kInertia;
+  auto cached_term = [&](const Term& term) {
+    return newton_model &&
+           (!term.gauss_newton_model || (absorb && term.kind == TermKind::kInertia));
+  };
   cache_.reset();
   if (newton_model) {
     std::vector<int> cached;
     std::vector<const double*> weights;
     for (size_t t = 0; t < potential_->terms().size(); ++t) {
       const Term& term = potential_->terms()[t];
-      if (term.gauss_newton_model) continue;
+      if (!cached_term(term)) continue;
       cached.push_back(static_cast<int>(t));
       weights.push_back(weight_of(term));
     }
-    cache_ = std::make_unique<NewtonModelCache>(potential_, std::move(cached), std::move(weights));
+    cache_ = std::make_unique<NewtonModelCache>(potential_, std::move(cached), std::move(weights),
+                                                absorb, state_);
   }
   int cache_index = 0;
   std::vector<double*> blocks;
@@ -87,7 +96,7 @@ void TrustRegionSolver::BuildProblem() {
     const double* weight = weight_of(term);
     blocks.clear();
     for (int node : term.nodes) blocks.push_back(positions_.data() + dim * node);
-    if (newton_model && !term.gauss_newton_model) {
+    if (cached_term(term)) {
       // The projected Newton model (solver/newton_model_cost.h).
       auto cost = std::make_unique<NewtonModelCost>(&term, dim, weight, &veto_, &filter_,
                                                     cache_.get(), cache_index++);

@@ -109,7 +109,7 @@ TEST_F(ProgramInput, LibraryErrorsNameTheFlag) {
        "ipstep: error: flag: --hessian_projection: unknown projection 'sometimes'"},
       {"--hessian_projection=when_indefinite",
        "ipstep: error: flag: --hessian_projection: when_indefinite needs the assembled Hessian: "
-       "projected_newton only (newton takes always, abs or trust_region)"},
+       "projected_newton only (newton takes always, abs, trust_region or inertia)"},
       {"--optimizer=dogleg --hessian_projection=progressive",
        "ipstep: error: flag: --hessian_projection: progressive needs the assembled Hessian"},
       {"--optimizer=lbfgs --hessian_projection=abs",
