@@ -6,6 +6,44 @@
 #include <Eigen/Eigenvalues>
 
 namespace ipstep {
+namespace {
+
+template <int N>
+void DecomposeFixed(const FullMatrix& m, FullVector* values, FullMatrix* vectors) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen;
+  if constexpr (N <= 3) {
+    eigen.computeDirect(m.template topLeftCorner<N, N>());
+  } else {
+    eigen.compute(m.template topLeftCorner<N, N>());
+  }
+  *values = eigen.eigenvalues();
+  *vectors = eigen.eigenvectors();
+}
+
+// Eigen-decomposition with fixed-size solvers for the common sizes.
+void Decompose(const FullMatrix& m, FullVector* values, FullMatrix* vectors) {
+  switch (m.rows()) {
+    case 2:
+      return DecomposeFixed<2>(m, values, vectors);
+    case 3:
+      return DecomposeFixed<3>(m, values, vectors);
+    case 4:
+      return DecomposeFixed<4>(m, values, vectors);
+    case 6:
+      return DecomposeFixed<6>(m, values, vectors);
+    case 9:
+      return DecomposeFixed<9>(m, values, vectors);
+    case 12:
+      return DecomposeFixed<12>(m, values, vectors);
+    default: {
+      Eigen::SelfAdjointEigenSolver<FullMatrix> eigen(m);
+      *values = eigen.eigenvalues();
+      *vectors = eigen.eigenvectors();
+    }
+  }
+}
+
+}  // namespace
 
 void FullHessian(const Term& term, int dimension, const TermModel& model, FullMatrix* hessian,
                  FullVector* gradient) {
@@ -26,7 +64,7 @@ void FullHessian(const Term& term, int dimension, const TermModel& model, FullMa
 }
 
 bool NegativeCurvatureBlocks(const TermModel& model, const FullMatrix& hessian, int nodes,
-                             int dimension, double* blocks) {
+                             int dimension, bool pair, double* blocks) {
   const int n = static_cast<int>(hessian.rows());
   FullMatrix negative = FullMatrix::Zero(n, n);
   bool any = false;
@@ -40,14 +78,24 @@ bool NegativeCurvatureBlocks(const TermModel& model, const FullMatrix& hessian, 
       any = true;
     }
   } else {
-    Eigen::SelfAdjointEigenSolver<FullMatrix> eigen(hessian);
-    const double scale = eigen.eigenvalues().cwiseAbs().maxCoeff();
-    for (int k = 0; k < n; ++k) {
-      const double l = eigen.eigenvalues()[k];
+    // Pair-difference terms: the negative part of K (d x d), which
+    // [[K, -K], [-K, K]] places on both nodes with signs; others: of H.
+    const FullMatrix& decomposed = pair ? model.hessian : hessian;
+    FullVector values;
+    FullMatrix vectors;
+    Decompose(decomposed, &values, &vectors);
+    const double scale = values.cwiseAbs().maxCoeff();
+    const int m = static_cast<int>(decomposed.rows());
+    for (int k = 0; k < m; ++k) {
+      const double l = values[k];
       // Round-off of a PSD Hessian (translations) is not negative curvature.
       if (!(l < -1e-12 * scale)) continue;
-      negative.noalias() -=
-          l * eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose();
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) {
+          const double sign = !pair || (a < m) == (b < m) ? 1.0 : -1.0;
+          negative(a, b) -= sign * l * vectors(a % m, k) * vectors(b % m, k);
+        }
+      }
       any = true;
     }
   }
@@ -67,9 +115,9 @@ void MatrixRows(const FullMatrix& matrix, const FullVector& gradient, int dimens
                 double* residuals, double** jacobians) {
   const int n = static_cast<int>(matrix.rows());
   const int blocks = n / dimension;
-  Eigen::SelfAdjointEigenSolver<FullMatrix> eigen(matrix);
-  const FullVector& values = eigen.eigenvalues();
-  const FullMatrix& vectors = eigen.eigenvectors();
+  FullVector values;
+  FullMatrix vectors;
+  Decompose(matrix, &values, &vectors);
   const double floor = kCurvatureFloor * std::max(values.cwiseAbs().maxCoeff(), 1e-300);
   for (int i = 0; i < rows; ++i) {
     const bool row = i < n;

@@ -60,10 +60,11 @@ void FullHessian(const Term& term, int dimension, const TermModel& model, FullMa
 
 // D_t's blocks (nodes x dimension^2, row-major dimension x dimension each)
 // for the exact Hessian `hessian` (full coordinates) of a term with `nodes`
-// nodes, using the reduced eigensystem where the model has one. False (and no
-// blocks) if the Hessian has no negative curvature.
+// nodes, from the reduced eigensystem where the model has one and from the
+// d x d model K of a pair-difference term (`pair`). False (and no blocks) if
+// the Hessian has no negative curvature.
 bool NegativeCurvatureBlocks(const TermModel& model, const FullMatrix& hessian, int nodes,
-                             int dimension, double* blocks);
+                             int dimension, bool pair, double* blocks);
 
 // Residuals and per-block Jacobian rows (row-major rows x dimension) of a
 // positive semi-definite `matrix` over a term's full coordinates carrying

@@ -102,7 +102,7 @@ void NewtonModelCache::PrepareAbsorbed(const double* x, EigenvalueFilter filter)
       FullHessian(term, dim, scratch->model, &full, &gradient);
       negative_[k] =
           NegativeCurvatureBlocks(scratch->model, full, static_cast<int>(term.nodes.size()), dim,
-                                  blocks_.data() + block_offset_[k]);
+                                  term.pair_difference, blocks_.data() + block_offset_[k]);
     }
   });
   // 2. The nodes' sums, in term order. A free node whose sum is over its
