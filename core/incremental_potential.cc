@@ -139,6 +139,12 @@ bool IncrementalPotential::PreciseTermEnergy(int t, double weight, const double*
   for (size_t b = 0; b < term.nodes.size(); ++b) {
     scratch->parameters[b] = x + dimension_ * term.nodes[b];
   }
+  if (term.precise_energy) {
+    long double e = 0.0L;
+    if (!term.precise_energy(scratch->parameters.data(), &e)) return false;
+    term_precise_energy_[t] = weight * e;
+    return true;
+  }
   long double s = 0.0L;
   if (term.precise_residual) {
     if (!term.precise_residual(scratch->parameters.data(), scratch->precise_residuals.data())) {

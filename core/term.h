@@ -70,6 +70,10 @@ struct Term {
   // Optional: the loss rho(s) in extended precision, for the same energies
   // (a loss evaluated in double limits them to its own round-off).
   std::function<long double(long double s)> precise_loss;
+  // Optional: the term's unweighted energy itself in extended precision,
+  // used instead of the two above where a residual form loses digits (the
+  // neo-Hookean element's r = sqrt(2 V Psi + c): V Psi - c cancels).
+  std::function<bool(const double* const* x, long double* energy)> precise_energy;
 
   // Second-order information for the Newton models (core/term_hessian.h).
   // Gauss-Newton (rho' J^T J + 2 rho'' (J^T r)(J^T r)^T) is this term's model:

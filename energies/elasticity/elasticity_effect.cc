@@ -72,8 +72,9 @@ void FillTerm(const ElasticMaterial& material, const double* const* rest, Term* 
   }
   if constexpr (kModel == ElasticModel::kNeoHookean) {
     term->loss = std::make_unique<OffsetLoss>(functor.offset);
-    const long double offset = functor.offset;
-    term->precise_loss = [offset](long double s) { return s - offset; };
+    term->precise_energy = [functor](const double* const* x, long double* energy) {
+      return functor.PreciseEnergy(x, energy);
+    };
   }
 }
 

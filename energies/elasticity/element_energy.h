@@ -31,8 +31,8 @@
 //   Gauss-Newton model is only rank one. The
 //   price is precision: e is the difference of r^2 / 2 and c / 2, about
 //   1e-20 mu V absolute in double, i.e. a relative error of 1e-20 / strain^2
-//   per element (the extended-precision line-search energy subtracts c in
-//   long double too, Term::precise_loss: about 1e-23 mu V). (With
+//   per element (the extended-precision line-search energy is V Psi itself,
+//   in long double, with no offset: Term::precise_energy). (With
 //   nu < 0, lambda < 0 and Psi is unbounded below as J -> 0; the term fails
 //   where 2 V Psi + c <= 0.)
 //
@@ -77,7 +77,6 @@ struct ElasticElement {
 
   // rest: kDim + 1 node positions (kDim each), positively oriented.
   ElasticElement(const double* const* rest, double mu, double lambda) : mu(mu), lambda(lambda) {
-    double dm[kDim][kDim];
     for (int c = 0; c < kDim; ++c) {
       for (int k = 0; k < kDim; ++k) dm[k][c] = rest[c + 1][k] - rest[0][k];
     }
@@ -192,6 +191,58 @@ struct ElasticElement {
     }
   }
 
+  // Term::precise_energy (core/term.h): V Psi in long double, without the
+  // neo-Hookean offset and without cancellation. Near rest Psi is O(strain^2)
+  // while its parts |F|^2 - d and ln J are O(1) and O(strain): summing those
+  // (even in long double) leaves noise of about 1e-19 mu V per element, which
+  // on 1.6e5 tetrahedra hid the last Newton decrease of a backward-Euler step
+  // (2e-19 J of noise against 2e-20 J of decrease: the line search stalled at
+  // 2.8e-5 m/s). So Psi is written in the displacement gradient
+  // H = F - I = (Ds - Dm) Dm^{-1} (exact differences) with q = J - 1 =
+  // tr H + I2(H) + det H (3D; tr H + det H in 2D), I2 = (tr^2 H - tr H^2)/2:
+  //   |F|^2 - d = 2 tr H + |H|^2,   tr H - ln J = -(I2 + det H) + (q - log1p q),
+  //   Psi = mu/2 |H|^2 - mu (I2 + det H) + mu (q - log1p q) + lambda/2 log1p(q)^2,
+  // every part O(strain^2).
+  bool PreciseEnergy(const double* const* x, long double* energy) const {
+    static_assert(kModel == ElasticModel::kNeoHookean);
+    long double h[kDim][kDim];
+    for (int i = 0; i < kDim; ++i) {
+      for (int j = 0; j < kDim; ++j) {
+        long double sum = 0.0L;
+        for (int c = 0; c < kDim; ++c) {
+          const long double edge = (static_cast<long double>(x[c + 1][i]) - x[0][i]) -
+                                   static_cast<long double>(dm[i][c]);
+          sum += edge * dm_inv[c][j];
+        }
+        h[i][j] = sum;
+      }
+    }
+    long double trace = 0.0L, norm2 = 0.0L, trace_h2 = 0.0L;
+    for (int i = 0; i < kDim; ++i) {
+      trace += h[i][i];
+      for (int j = 0; j < kDim; ++j) {
+        norm2 += h[i][j] * h[i][j];
+        trace_h2 += h[i][j] * h[j][i];
+      }
+    }
+    long double det;
+    if constexpr (kDim == 2) {
+      det = h[0][0] * h[1][1] - h[0][1] * h[1][0];
+    } else {
+      det = h[0][0] * (h[1][1] * h[2][2] - h[1][2] * h[2][1]) -
+            h[0][1] * (h[1][0] * h[2][2] - h[1][2] * h[2][0]) +
+            h[0][2] * (h[1][0] * h[2][1] - h[1][1] * h[2][0]);
+    }
+    const long double i2 = kDim == 3 ? 0.5L * (trace * trace - trace_h2) : 0.0L;
+    const long double q = trace + i2 + det;  // J - 1
+    if (!(q > -1.0L)) return false;
+    const long double log_j = std::log1p(q);
+    const long double psi =
+        0.5L * mu * norm2 - mu * (i2 + det) + mu * (q - log_j) + 0.5L * lambda * log_j * log_j;
+    *energy = volume * psi;
+    return std::isfinite(static_cast<double>(*energy));
+  }
+
   // Term::curvature (core/term.h): sum_k c_k Hess r_k over the element's
   // coordinates, row-major; for the models of HasAnalyticCurvature only.
   bool Curvature(const double* const* x, const double* c, double* curvature) const {
@@ -240,6 +291,7 @@ struct ElasticElement {
     return true;
   }
 
+  double dm[kDim][kDim];  // rest edges Dm (columns x_c+1 - x_0)
   double dm_inv[kDim][kDim];
   double volume = 0.0;
   double mu = 0.0;

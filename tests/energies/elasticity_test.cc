@@ -841,5 +841,57 @@ TEST(BallImpact, BackwardEulerNeitherInvertsNorPenetratesNorFails) {
   RunBallImpact("backward_euler");
 }
 
+// The neo-Hookean element's extended-precision energy (Term::precise_energy,
+// element_energy.h) keeps its digits at small strain: at a displacement
+// gradient of 1e-8 it matches linear elasticity's mu |eps|^2 + lambda/2
+// tr(eps)^2 to the O(strain) nonlinearity (a sum of |F|^2 - 3 and ln J would
+// leave a relative error of about 1e-3 there), and at finite strain it is the
+// residual form's energy.
+TEST(ElasticElement, NeoHookeanPreciseEnergyKeepsSmallStrains) {
+  ElasticMaterial material;
+  material.model = ElasticModel::kNeoHookean;
+  material.youngs_modulus = 1e8;
+  material.poisson_ratio = 0.3;
+  const double mu = material.mu(), lambda = material.lambda(3);
+  const double rest[4][3] = {{0.3, -0.2, 1.1}, {1.3, -0.1, 1.1}, {0.5, 0.8, 1.2}, {0.4, 0.0, 2.1}};
+  const double* rest_nodes[4] = {rest[0], rest[1], rest[2], rest[3]};
+  const Term term = MakeElasticElementTerm(material, 3, rest_nodes, {0, 1, 2, 3});
+  ASSERT_TRUE(static_cast<bool>(term.precise_energy));
+  const double g[3][3] = {{0.3, -0.7, 0.2}, {0.5, 0.1, -0.4}, {-0.2, 0.6, 0.9}};
+  for (double strain : {1e-8, 1e-3, 0.2}) {
+    double x[4][3];
+    for (int a = 0; a < 4; ++a) {
+      for (int i = 0; i < 3; ++i) {
+        x[a][i] = rest[a][i];
+        for (int j = 0; j < 3; ++j) x[a][i] += strain * g[i][j] * (rest[a][j] - rest[0][j]);
+      }
+    }
+    const double* p[4] = {x[0], x[1], x[2], x[3]};
+    long double energy = 0.0L;
+    ASSERT_TRUE(term.precise_energy(p, &energy));
+    // The volume: det(Dm) / 6.
+    Eigen::Matrix3d dm;
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 3; ++k) dm(k, c) = rest[c + 1][k] - rest[0][k];
+    }
+    const double volume = dm.determinant() / 6.0;
+    Eigen::Matrix3d h =
+        strain * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&g[0][0]);
+    const Eigen::Matrix3d eps = 0.5 * (h + h.transpose());
+    const double linear =
+        volume * (mu * eps.squaredNorm() + 0.5 * lambda * eps.trace() * eps.trace());
+    if (strain < 1e-6) {
+      EXPECT_NEAR(static_cast<double>(energy) / linear, 1.0, 1e-6) << strain;
+    } else {
+      // The residual form: 1/2 rho(|r|^2).
+      double r = 0.0;
+      ASSERT_TRUE(term.cost->Evaluate(p, &r, nullptr));
+      double rho[3];
+      term.loss->Evaluate(r * r, rho);
+      EXPECT_NEAR(static_cast<double>(energy), 0.5 * rho[0], 1e-9 * 0.5 * rho[0]) << strain;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ipstep
