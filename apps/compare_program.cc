@@ -179,10 +179,9 @@ int Run(const EffectRegistry& registry) {
       SimulationOptions options = base;
       options.integrator.name = integrator;
       options.optimizer.optimizer = ParseOptimizer(optimizer);
-      const std::string label = explicit_method ? "(explicit)"
-                                : optimizer == "projected_newton"
-                                    ? "projected_newton (Eigen, not Ceres)"
-                                    : optimizer;
+      const std::string label = explicit_method                   ? "(explicit)"
+                                : optimizer == "projected_newton" ? "projected_newton (not Ceres)"
+                                                                  : optimizer;
       const RunResult r = RunOnce(scene, options);
       char row[400];
       if (r.diverged_at > 0) {

@@ -15,7 +15,7 @@ DEFINE_string(integrator, "backward_euler",
               "backward_euler | newmark | quasi_static | symplectic_euler");
 DEFINE_string(optimizer, "newton",
               "newton | dogleg | gauss_newton | lbfgs | bfgs | ncg | gradient_descent | "
-              "projected_newton (Eigen, not Ceres)");
+              "projected_newton (not Ceres)");
 DEFINE_double(dt, 0.0, "Time step [s], in [1e-12, 1e3]; default: the scene's time_step");
 DEFINE_int32(steps, -1, "Number of steps, in [0, 10000000]; default: the scene's steps");
 DEFINE_double(tolerance, 1e-5,

@@ -174,7 +174,7 @@ bool IncrementalPotential::PreciseTermEnergy(int t, double weight, const double*
 bool IncrementalPotential::EvaluatePreciseEnergy(const double* x, long double* energy) const {
   if (!IsStepValid(x)) return false;
   const int n = static_cast<int>(terms_.size());
-  pool_->ParallelFor(n, kParallelGrain, [&](int begin, int end, int thread) {
+  pool_->ParallelFor(n, kEnergyGrain, [&](int begin, int end, int thread) {
     for (int t = begin; t < end; ++t) {
       const double weight = TermWeight(terms_[t].kind, *context_);
       term_precise_energy_[t] = 0.0L;
@@ -248,7 +248,7 @@ bool IncrementalPotential::Accumulate(const TermFilter& filter, bool weighted, c
   const int n = static_cast<int>(terms_.size());
   const bool with_gradient = gradient != nullptr;
   // term_ok_: 1 evaluated, 0 failed, 2 skipped (filtered out or weight 0).
-  pool_->ParallelFor(n, kParallelGrain, [&](int begin, int end, int thread) {
+  pool_->ParallelFor(n, kEnergyGrain, [&](int begin, int end, int thread) {
     for (int t = begin; t < end; ++t) {
       const Term& term = terms_[t];
       const double weight = weighted ? TermWeight(term.kind, *context_) : 1.0;

@@ -75,8 +75,13 @@ class IncrementalPotential {
   // loops over terms use the same pool.
   void SetNumThreads(int threads);
   ThreadPool& thread_pool() const { return *pool_; }
-  // Terms per thread below which a loop stays on the calling thread.
-  static constexpr int kParallelGrain = 256;
+  // Terms per thread below which a loop stays on the calling thread: for
+  // energies and gradients (about 0.1 us a spring), and for Newton models
+  // (about 1-3 us a tetrahedron). Measured on the 20 x 20 cloth (1,880 terms):
+  // with 256 for both, 2 threads made lbfgs 28 -> 41 ms and newton 5.8 -> 7.1
+  // ms per step (waking the team costs more than the work it shares).
+  static constexpr int kEnergyGrain = 4096;
+  static constexpr int kModelGrain = 512;
 
  private:
   // Per-thread evaluation memory.

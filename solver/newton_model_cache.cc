@@ -85,7 +85,7 @@ void NewtonModelCache::PrepareAbsorbed(const double* x, EigenvalueFilter filter)
   std::fill(node_inertia_.begin(), node_inertia_.end(), 0.0);
   // 1. Every term's model, its clamped rows (the fallback) and its negative
   //    curvature's node blocks; the inertia terms' w_I m.
-  pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+  pool.ParallelFor(n, IncrementalPotential::kModelGrain, [&](int begin, int end, int thread) {
     Scratch* scratch = &scratch_[thread];
     FullMatrix full;
     FullVector gradient;
@@ -149,7 +149,7 @@ void NewtonModelCache::PrepareAbsorbed(const double* x, EigenvalueFilter filter)
   sum_blocks(negative_, &share_);
   // 3. The absorbed terms' rows (H_t + D_t) and the inertia terms' rows
   //    (w_I m I minus the node's sum).
-  pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+  pool.ParallelFor(n, IncrementalPotential::kModelGrain, [&](int begin, int end, int thread) {
     Scratch* scratch = &scratch_[thread];
     FullMatrix full;
     FullVector gradient;
@@ -188,7 +188,9 @@ void NewtonModelCache::Prepare(const double* x, bool jacobians, EigenvalueFilter
   if (absorb_ && jacobians) {
     PrepareAbsorbed(x, filter);
   } else {
-    pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+    const int grain =
+        jacobians ? IncrementalPotential::kModelGrain : IncrementalPotential::kEnergyGrain;
+    pool.ParallelFor(n, grain, [&](int begin, int end, int thread) {
       for (int k = begin; k < end; ++k) Compute(k, x, jacobians, filter, &scratch_[thread]);
     });
   }

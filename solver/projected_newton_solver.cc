@@ -176,7 +176,7 @@ bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, TermHessia
   if (static_cast<int>(scratch_.size()) < pool.num_threads()) scratch_.resize(pool.num_threads());
   term_ok_.resize(n);
   // term_ok_: 1 computed, 0 failed, 2 skipped (weight 0).
-  pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+  pool.ParallelFor(n, IncrementalPotential::kModelGrain, [&](int begin, int end, int thread) {
     for (int t = begin; t < end; ++t) {
       const double weight = TermWeight(terms[t].kind, context);
       if (weight == 0.0) {
@@ -202,7 +202,7 @@ bool ProjectedNewtonSolver::UpdateTermHessians(const Eigen::VectorXd& x,
   const auto& all = potential_->terms();
   const int n = static_cast<int>(terms.size());
   ThreadPool& pool = potential_->thread_pool();
-  pool.ParallelFor(n, IncrementalPotential::kParallelGrain, [&](int begin, int end, int thread) {
+  pool.ParallelFor(n, IncrementalPotential::kModelGrain, [&](int begin, int end, int thread) {
     for (int k = begin; k < end; ++k) {
       const int t = terms[k];
       const double weight = TermWeight(all[t].kind, context);

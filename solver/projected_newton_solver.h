@@ -1,4 +1,4 @@
-// projected_newton: ipstep's own projected Newton method on Eigen, not Ceres.
+// projected_newton: ipstep's own Newton method, not Ceres.
 // The yardstick for what Ceres itself costs (docs/benchmarks.md), and an
 // optimiser of its own (`--optimizer=projected_newton`). A StepSolver over the
 // same IncrementalPotential terms with the same stopping rule

@@ -2,7 +2,7 @@
 // gradients and Newton models are computed on the potential's thread pool
 // (core/thread_pool.h) and summed in term order, so every optimiser takes
 // the same iterates, bit for bit, for any number of threads. Each scene has
-// more terms than one thread keeps to itself (IncrementalPotential::kParallelGrain).
+// more terms than one thread keeps to itself (IncrementalPotential::kEnergyGrain and kModelGrain).
 #include <string>
 #include <vector>
 
