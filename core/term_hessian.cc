@@ -9,7 +9,7 @@ namespace ipstep {
 namespace {
 
 template <int N>
-void DecomposeFixed(const TermMatrix& h, ProjectedHessian* out) {
+void DecomposeFixed(const TermMatrix& h, TermVector* values, TermMatrix* vectors) {
   using Fixed = Eigen::Matrix<double, N, N>;
   Eigen::SelfAdjointEigenSolver<Fixed> eigen;
   if constexpr (N <= 3) {
@@ -17,11 +17,37 @@ void DecomposeFixed(const TermMatrix& h, ProjectedHessian* out) {
   } else {
     eigen.compute(h.template topLeftCorner<N, N>());
   }
-  out->vectors = eigen.eigenvectors();
-  out->values = eigen.eigenvalues();
+  *vectors = eigen.eigenvectors();
+  *values = eigen.eigenvalues();
 }
 
 }  // namespace
+
+void DecomposeSymmetric(const TermMatrix& m, TermVector* values, TermMatrix* vectors) {
+  switch (m.rows()) {
+    case 1:
+      vectors->setOnes(1, 1);
+      values->setConstant(1, m(0, 0));
+      return;
+    case 2:
+      return DecomposeFixed<2>(m, values, vectors);
+    case 3:
+      return DecomposeFixed<3>(m, values, vectors);
+    case 4:
+      return DecomposeFixed<4>(m, values, vectors);
+    case 6:
+      return DecomposeFixed<6>(m, values, vectors);
+    case 9:
+      return DecomposeFixed<9>(m, values, vectors);
+    case 12:
+      return DecomposeFixed<12>(m, values, vectors);
+    default: {
+      Eigen::SelfAdjointEigenSolver<TermMatrix> eigen(m);
+      *vectors = eigen.eigenvectors();
+      *values = eigen.eigenvalues();
+    }
+  }
+}
 
 int ModelSize(const Term& term, int dimension) {
   return term.pair_difference ? dimension : dimension * static_cast<int>(term.nodes.size());
@@ -173,34 +199,7 @@ void ProjectHessian(const TermModel& model, ProjectedHessian* projected, Eigenva
     projected->values = model.reduced_values;
     projected->coordinates = model.reduced_coordinates;
   } else {
-    const TermMatrix& h = model.hessian;
-    switch (h.rows()) {
-      case 1:
-        projected->vectors.setOnes(1, 1);
-        projected->values.setConstant(1, h(0, 0));
-        break;
-      case 2:
-        DecomposeFixed<2>(h, projected);
-        break;
-      case 3:
-        DecomposeFixed<3>(h, projected);
-        break;
-      case 4:
-        DecomposeFixed<4>(h, projected);
-        break;
-      case 6:
-        DecomposeFixed<6>(h, projected);
-        break;
-      case 9:
-        DecomposeFixed<9>(h, projected);
-        break;
-      default: {
-        Eigen::SelfAdjointEigenSolver<TermMatrix> eigen(h);
-        projected->vectors = eigen.eigenvectors();
-        projected->values = eigen.eigenvalues();
-        break;
-      }
-    }
+    DecomposeSymmetric(model.hessian, &projected->values, &projected->vectors);
     projected->coordinates.resize(projected->vectors.cols());
     for (int i = 0; i < projected->vectors.cols(); ++i) {
       projected->coordinates[i] = projected->vectors.col(i).dot(model.gradient);

@@ -156,6 +156,10 @@ class TermModelEvaluator {
   TermMatrix scaled_;
 };
 
+// Eigen-decomposition of a symmetric term matrix, ascending eigenvalues
+// (Eigen's fixed-size solvers for the common sizes, closed form up to 3).
+void DecomposeSymmetric(const TermMatrix& m, TermVector* values, TermMatrix* vectors);
+
 // The rows of a term's Newton model in Ceres (solver/newton_model_cost.h): k
 // for a reduced model, else ModelSize.
 int ModelRows(const Term& term, int dimension);

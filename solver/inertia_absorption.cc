@@ -6,44 +6,6 @@
 #include <Eigen/Eigenvalues>
 
 namespace ipstep {
-namespace {
-
-template <int N>
-void DecomposeFixed(const FullMatrix& m, FullVector* values, FullMatrix* vectors) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen;
-  if constexpr (N <= 3) {
-    eigen.computeDirect(m.template topLeftCorner<N, N>());
-  } else {
-    eigen.compute(m.template topLeftCorner<N, N>());
-  }
-  *values = eigen.eigenvalues();
-  *vectors = eigen.eigenvectors();
-}
-
-// Eigen-decomposition with fixed-size solvers for the common sizes.
-void Decompose(const FullMatrix& m, FullVector* values, FullMatrix* vectors) {
-  switch (m.rows()) {
-    case 2:
-      return DecomposeFixed<2>(m, values, vectors);
-    case 3:
-      return DecomposeFixed<3>(m, values, vectors);
-    case 4:
-      return DecomposeFixed<4>(m, values, vectors);
-    case 6:
-      return DecomposeFixed<6>(m, values, vectors);
-    case 9:
-      return DecomposeFixed<9>(m, values, vectors);
-    case 12:
-      return DecomposeFixed<12>(m, values, vectors);
-    default: {
-      Eigen::SelfAdjointEigenSolver<FullMatrix> eigen(m);
-      *values = eigen.eigenvalues();
-      *vectors = eigen.eigenvectors();
-    }
-  }
-}
-
-}  // namespace
 
 void FullHessian(const Term& term, int dimension, const TermModel& model, FullMatrix* hessian,
                  FullVector* gradient) {
@@ -83,7 +45,7 @@ bool NegativeCurvatureBlocks(const TermModel& model, const FullMatrix& hessian, 
     const FullMatrix& decomposed = pair ? model.hessian : hessian;
     FullVector values;
     FullMatrix vectors;
-    Decompose(decomposed, &values, &vectors);
+    DecomposeSymmetric(decomposed, &values, &vectors);
     const double scale = values.cwiseAbs().maxCoeff();
     const int m = static_cast<int>(decomposed.rows());
     for (int k = 0; k < m; ++k) {
@@ -117,7 +79,7 @@ void MatrixRows(const FullMatrix& matrix, const FullVector& gradient, int dimens
   const int blocks = n / dimension;
   FullVector values;
   FullMatrix vectors;
-  Decompose(matrix, &values, &vectors);
+  DecomposeSymmetric(matrix, &values, &vectors);
   const double floor = kCurvatureFloor * std::max(values.cwiseAbs().maxCoeff(), 1e-300);
   for (int i = 0; i < rows; ++i) {
     const bool row = i < n;

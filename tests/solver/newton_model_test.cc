@@ -295,6 +295,37 @@ TEST(TermHessian, ProjectionFloorsNegativeCurvatureAndKeepsPositiveDefiniteModel
   EXPECT_LE((same - model.hessian).cwiseAbs().maxCoeff(), 1e-14);
 }
 
+// What Ceres sees of one NewtonModelCost block at x: its cost, gradient and
+// dense Jacobian, through Problem::Evaluate.
+struct CeresView {
+  bool ok = false;
+  double cost = 0.0;
+  std::vector<double> gradient;
+  Eigen::MatrixXd jacobian;
+};
+
+CeresView EvaluateInCeres(NewtonModelCost* cost, std::vector<std::vector<double>>* x) {
+  NewtonModelLoss loss(cost);
+  ceres::Problem::Options options;
+  options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(options);
+  std::vector<double*> blocks;
+  for (auto& b : *x) blocks.push_back(b.data());
+  problem.AddResidualBlock(cost, &loss, blocks);
+  CeresView view;
+  ceres::CRSMatrix jacobian;
+  view.ok = problem.Evaluate(ceres::Problem::EvaluateOptions(), &view.cost, nullptr, &view.gradient,
+                             &jacobian);
+  view.jacobian = Eigen::MatrixXd::Zero(jacobian.num_rows, jacobian.num_cols);
+  for (int r = 0; r < jacobian.num_rows; ++r) {
+    for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k) {
+      view.jacobian(r, jacobian.cols[k]) = jacobian.values[k];
+    }
+  }
+  return view;
+}
+
 // What Ceres sees: a problem with the one residual block NewtonModelCost +
 // NewtonModelLoss has cost e, gradient g and J^T J = the projected Hessian.
 TEST(NewtonModelCost, CeresSeesTheEnergyTheGradientAndTheProjectedHessian) {
@@ -310,19 +341,10 @@ TEST(NewtonModelCost, CeresSeesTheEnergyTheGradientAndTheProjectedHessian) {
       const double weight = 2.5;
       const bool veto = false;
       NewtonModelCost cost(&term, dim, &weight, &veto);
-      NewtonModelLoss loss(&cost);
-      ceres::Problem::Options options;
-      options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-      options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-      ceres::Problem problem(options);
-      std::vector<double*> blocks;
-      for (auto& b : x) blocks.push_back(b.data());
-      problem.AddResidualBlock(&cost, &loss, blocks);
-      double ceres_cost = 0.0;
-      std::vector<double> gradient;
-      ceres::CRSMatrix jacobian;
-      ASSERT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &ceres_cost, nullptr,
-                                   &gradient, &jacobian));
+      const CeresView view = EvaluateInCeres(&cost, &x);
+      ASSERT_TRUE(view.ok);
+      const double ceres_cost = view.cost;
+      const std::vector<double>& gradient = view.gradient;
       TermModelEvaluator evaluator;
       TermModel model;
       ASSERT_TRUE(evaluator.Evaluate(term, dim, weight, Blocks(x).data(), true, &model));
@@ -344,12 +366,7 @@ TEST(NewtonModelCost, CeresSeesTheEnergyTheGradientAndTheProjectedHessian) {
               term.pair_difference ? ((a < n) == (b < n) ? 1.0 : -1.0) * h(a % n, b % n) : h(a, b);
         }
       }
-      Eigen::MatrixXd j = Eigen::MatrixXd::Zero(jacobian.num_rows, jacobian.num_cols);
-      for (int r = 0; r < jacobian.num_rows; ++r) {
-        for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k) {
-          j(r, jacobian.cols[k]) = jacobian.values[k];
-        }
-      }
+      const Eigen::MatrixXd& j = view.jacobian;
       const double scale = full_h.cwiseAbs().maxCoeff();
       EXPECT_LE((j.transpose() * j - full_h).cwiseAbs().maxCoeff(), 1e-12 * scale);
       for (int a = 0; a < nt; ++a) {
@@ -400,30 +417,16 @@ TEST(NewtonModelCost, ElasticElementsProjectInFSpace) {
           const bool veto = false;
           NewtonModelCost cost(&term, dim, &weight, &veto, &filter);
           EXPECT_EQ(cost.num_residuals(), dim * dim);
-          NewtonModelLoss loss(&cost);
-          ceres::Problem::Options options;
-          options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-          options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-          ceres::Problem problem(options);
-          std::vector<double*> blocks;
-          for (auto& b : x) blocks.push_back(b.data());
-          problem.AddResidualBlock(&cost, &loss, blocks);
-          double ceres_cost = 0.0;
-          std::vector<double> gradient;
-          ceres::CRSMatrix jacobian;
-          ASSERT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &ceres_cost, nullptr,
-                                       &gradient, &jacobian));
+          const CeresView view = EvaluateInCeres(&cost, &x);
+          ASSERT_TRUE(view.ok);
+          const double ceres_cost = view.cost;
+          const std::vector<double>& gradient = view.gradient;
           EXPECT_NEAR(ceres_cost, exact.energy, 1e-12 * std::abs(exact.energy));
           for (int a = 0; a < n; ++a) {
             EXPECT_NEAR(gradient[a], exact.gradient[a],
                         1e-9 * exact.gradient.cwiseAbs().maxCoeff());
           }
-          Eigen::MatrixXd j = Eigen::MatrixXd::Zero(jacobian.num_rows, jacobian.num_cols);
-          for (int r = 0; r < jacobian.num_rows; ++r) {
-            for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k) {
-              j(r, jacobian.cols[k]) = jacobian.values[k];
-            }
-          }
+          const Eigen::MatrixXd& j = view.jacobian;
           projection[f] = j.transpose() * j;
         }
         const Eigen::MatrixXd h = exact.hessian;
