@@ -18,13 +18,15 @@
 
 #include "apps/command_line.h"
 #include "apps/contact_flags.h"
-#include "apps/divergence.h"
 #include "apps/near_miss.h"
 #include "apps/program_main.h"
 #include "apps/programs.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
 #include "problems/scene_loader.h"
+#include "sim/divergence.h"
+#include "sim/reference.h"
+#include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 
 DEFINE_string(integrators, "backward_euler,newmark,symplectic_euler",
@@ -37,42 +39,24 @@ DEFINE_string(optimizers, "newton,dogleg,gauss_newton,projected_newton,lbfgs,ncg
 namespace ipstep {
 namespace {
 
+// The reference's tolerance [m/s]: near the precision floor of cost-based
+// acceptance (README "Precision floor").
+constexpr double kReferenceTolerance = 1e-7;
+
 struct RunResult {
-  int failed = 0;
-  int steps_done = 0;
-  double iterations_per_step = 0.0;
-  double ms_per_step = 0.0;
-  double energy_drift = 0.0;  // max |E - E0| / |E0|
+  RunSummary run;
   Eigen::VectorXd x;
-  double initial_energy = 0.0;
-  int diverged_at = 0;  // the step at which the run diverged (apps/divergence.h); 0: it did not
-  double seconds = 0.0;
+  std::vector<int> free_nodes;
+  int dimension = 2;
 };
 
-RunResult RunOnce(const Scene& scene, SimulationOptions options) {
+RunResult RunOnce(const Scene& scene, const SimulationOptions& options) {
   Simulation sim(scene, options);
   RunResult result;
-  const double e0 = sim.Energies().total();
-  result.initial_energy = e0;
-  long iterations = 0;
-  for (int step = 1; step <= sim.steps(); ++step) {
-    const StepReport r = sim.Step();
-    ++result.steps_done;
-    iterations += r.iterations;
-    result.seconds += r.wall_seconds;
-    if (!r.converged) ++result.failed;
-    const double drift = std::abs(r.energies.total() - e0) / std::max(std::abs(e0), 1e-300);
-    result.energy_drift = std::max(result.energy_drift, drift);
-    if (RunDiverged(e0, r.energies.total(),
-                    sim.state().x.allFinite() && sim.state().v.allFinite())) {
-      result.diverged_at = step;
-      break;
-    }
-  }
-  const int n = std::max(1, result.steps_done);
-  result.iterations_per_step = static_cast<double>(iterations) / n;
-  result.ms_per_step = 1e3 * result.seconds / n;
+  result.run = RunTrajectory(sim);
   result.x = sim.state().x;
+  result.free_nodes = FreeNodes(sim.state());
+  result.dimension = sim.state().dimension;
   return result;
 }
 
@@ -106,14 +90,6 @@ std::vector<std::string> CheckedList(const char* flag, const char* option, const
   return names;
 }
 
-// Exact final positions for the built-in oscillator (omega = 1, u0 = 0.1, at rest).
-bool ExactOscillator(const Scene& scene, double t, Eigen::VectorXd* x) {
-  if (scene.name != "oscillator") return false;
-  *x = Eigen::Map<const Eigen::VectorXd>(scene.positions.data(), scene.positions.size());
-  (*x)[2] = 1.0 + 0.1 * std::cos(t);
-  return true;
-}
-
 int Run(const EffectRegistry& registry) {
   SimulationOptions base = SimulationOptionsFromFlags(registry);
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
@@ -135,29 +111,18 @@ int Run(const EffectRegistry& registry) {
   const int steps = base.steps >= 0 ? base.steps : scene.steps;
   const double t_end = dt * steps;
 
-  Eigen::VectorXd reference;
-  std::string reference_note;
-  if (ExactOscillator(scene, t_end, &reference)) {
-    reference_note = "exact solution";
-  } else {
-    SimulationOptions fine = base;
-    fine.integrator = IntegratorOptions{"newmark", 0.25, 0.5};
-    fine.optimizer = OptimizerOptions{};
-    fine.optimizer.tolerance = 1e-7;
-    fine.time_step = dt / 16;
-    fine.steps = steps * 16;
+  ReferenceOptions reference_options;
+  reference_options.optimizer.tolerance = kReferenceTolerance;
+  if (!ExactPositions(scene, t_end, nullptr)) {
     std::fprintf(stderr, "ipstep_compare: reference runs (Newmark at dt/16 and dt/8) ...\n");
-    const RunResult r16 = RunOnce(scene, fine);
-    fine.time_step = dt / 8;
-    fine.steps = steps * 8;
-    const RunResult r8 = RunOnce(scene, fine);
-    reference = r16.x;
-    char note[200];
-    std::snprintf(note, sizeof(note),
-                  "Newmark(1/4,1/2) + newton at dt/16, tolerance 1e-7 (%d of %d steps not "
-                  "converged); its estimated error %.2e m",
-                  r16.failed, steps * 16, (r8.x - r16.x).lpNorm<Eigen::Infinity>() / 3.0);
-    reference_note = note;
+  }
+  const ReferenceSolution reference = ComputeReference(scene, base, reference_options, dt, t_end);
+  std::string reference_note = reference.description;
+  if (!reference.exact) {
+    char note[160];
+    std::snprintf(note, sizeof(note), " (%d of %d steps not converged); its estimated error %.2e m",
+                  reference.failed_steps, reference.steps, reference.error);
+    reference_note += note;
   }
 
   std::printf("scene %s: %d nodes, dt %g s, %d steps (t = %g s), tolerance %g m/s\n",
@@ -170,8 +135,8 @@ int Run(const EffectRegistry& registry) {
     total += integrator == "symplectic_euler" ? 1 : static_cast<int>(optimizers.size());
   }
   std::string table =
-      "| integrator | optimizer | failed steps | iterations/step | ms/step | position error [m] "
-      "| max energy drift |\n|---|---|---|---|---|---|---|\n";
+      "| integrator | optimizer | dt [s] | failed steps | iterations/step | ms/step | position "
+      "error [m] | max energy drift [energy scales] |\n|---|---|---|---|---|---|---|---|\n";
   int done = 0, diverged = 0;
   for (const std::string& integrator : integrators) {
     const bool explicit_method = integrator == "symplectic_euler";
@@ -182,26 +147,26 @@ int Run(const EffectRegistry& registry) {
       const std::string label = explicit_method                   ? "(explicit)"
                                 : optimizer == "projected_newton" ? "projected_newton (not Ceres)"
                                                                   : optimizer;
-      const RunResult r = RunOnce(scene, options);
+      const RunResult result = RunOnce(scene, options);
+      const RunSummary& r = result.run;
       char row[400];
-      if (r.diverged_at > 0) {
+      if (r.diverged()) {
         ++diverged;
         std::snprintf(row, sizeof(row),
-                      "| %s | %s | %d | %.1f | %.3f | diverged (step %d) | diverged |\n",
-                      integrator.c_str(), label.c_str(), r.failed, r.iterations_per_step,
-                      r.ms_per_step, r.diverged_at);
+                      "| %s | %s | %g | %d | %.1f | %.3f | diverged (step %d) | diverged |\n",
+                      integrator.c_str(), label.c_str(), dt, r.failed, r.iterations_per_step(),
+                      r.ms_per_step(), r.diverged_at);
       } else {
-        const double error = (r.x - reference).lpNorm<Eigen::Infinity>();
-        char drift[32] = "n/a (E0 = 0)";  // a drift relative to E0 = 0 means nothing
-        if (r.initial_energy != 0.0) std::snprintf(drift, sizeof(drift), "%.3e", r.energy_drift);
-        std::snprintf(row, sizeof(row), "| %s | %s | %d | %.1f | %.3f | %.3e | %s |\n",
-                      integrator.c_str(), label.c_str(), r.failed, r.iterations_per_step,
-                      r.ms_per_step, error, drift);
+        const double error =
+            MaxNodeDistance(result.x, reference.x, result.free_nodes, result.dimension);
+        std::snprintf(row, sizeof(row), "| %s | %s | %g | %d | %.1f | %.3f | %.3e | %.3e |\n",
+                      integrator.c_str(), label.c_str(), dt, r.failed, r.iterations_per_step(),
+                      r.ms_per_step(), error, r.max_energy_drift);
       }
       table += row;
       std::fprintf(
           stderr, "ipstep_compare: [%d/%d] %s %s: %.2f s, %d failed steps%s\n", ++done, total,
-          integrator.c_str(), explicit_method ? "(explicit)" : optimizer.c_str(), r.seconds,
+          integrator.c_str(), explicit_method ? "(explicit)" : optimizer.c_str(), r.wall_seconds,
           r.failed,
           r.diverged_at > 0 ? (", diverged at step " + std::to_string(r.diverged_at)).c_str() : "");
       if (explicit_method) break;  // no optimiser involved
@@ -209,7 +174,7 @@ int Run(const EffectRegistry& registry) {
   }
   std::printf("%s", table.c_str());
   if (diverged > 0) {
-    std::printf("\ndiverged: %s (apps/divergence.h); the run stops there.\n", kDivergedRule);
+    std::printf("\ndiverged: %s; the run stops there.\n", DivergenceRule::Description());
   }
   std::fflush(stdout);
   return 0;

@@ -25,6 +25,7 @@ const std::vector<FlagName>& FlagNames() {
       // sim/simulation.cc
       {"options: SimulationOptions.time_step", "dt"},
       {"options: SimulationOptions.steps", "steps"},
+      {"options: SimulationOptions.t_end", "t_end"},
       // problems/scene_loader.cc
       {"options: SceneLoadOptions.grid_size", "grid_size"},
       // io/: the names apps/ipstep_program.cc gives its outputs
@@ -42,6 +43,14 @@ const std::vector<UnmappedName>& UnmappedNames() {
        "the contact flags are range-checked and checked against the scene's effects in "
        "apps/contact_flags.cc before they become overrides, and one effect's overrides come "
        "from several flags (--contact_kappa, --contact_dhat)"},
+      {"options: RunOptions.steps",
+       "the programs run a Simulation's own steps (--steps, --t_end) or ipstep_bench's checked "
+       "--steps"},
+      {"options: RunOptions.max_wall_seconds",
+       "ipstep_bench range-checks --max_run_seconds before it becomes the run's limit"},
+      {"options: ReferenceOptions.refinement",
+       "the programs use the default refinement; the step count it gives is checked by the "
+       "programs' own --steps and --t_end ranges"},
   };
   return names;
 }

@@ -2,7 +2,8 @@
 // integrator and one optimiser.
 //   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
 // Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed (also
-// as substeps, --max_substeps) with --on_failure=stop.
+// as substeps, --max_substeps) or the run diverged (sim/divergence.h), with
+// --on_failure=stop.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -22,6 +23,7 @@
 #include "io/positions_writer.h"
 #include "io/stats_writer.h"
 #include "problems/scene_loader.h"
+#include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 
 DEFINE_string(on_failure, "stop",
@@ -96,58 +98,71 @@ int Run(const EffectRegistry& registry) {
   for (const std::string& line : sim.effect_summaries()) std::printf("  %s\n", line.c_str());
   std::fflush(stdout);
 
-  const EnergyReport e0 = sim.Energies();
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
-  int failures = 0, substepped = 0;
-  long total_iterations = 0;
-  double solve_seconds = 0.0;
   bool progress_shown = false;
-  for (int step = 1; step <= sim.steps(); ++step) {
+  RunOptions run_options;
+  run_options.stop_on_failure = FLAGS_on_failure == "stop";
+  // With --on_failure=continue a diverged run goes on (its steps are "diverged").
+  run_options.stop_on_divergence = run_options.stop_on_failure;
+  run_options.before_step = [&](int step) {
     if (iterations) iterations->set_step(step);
-    const StepReport r = sim.Step();
-    total_iterations += r.iterations;
-    solve_seconds += r.wall_seconds;
+  };
+  run_options.after_step = [&](const StepReport& r) {
     if (stats) stats->Write(r);
-    if (frames && step % FLAGS_frame_every == 0) frames->Write(step);
-    VLOG(1) << "step " << step << " t=" << r.time << " iterations=" << r.iterations
+    if (frames && r.step % FLAGS_frame_every == 0) frames->Write(r.step);
+    VLOG(1) << "step " << r.step << " t=" << r.time << " iterations=" << r.iterations
             << " residual=" << r.residual << " E=" << r.energies.total() << " " << r.status;
     if (r.converged && r.substeps > 1) {
-      ++substepped;
       std::fprintf(stderr, "%sstep %d (t = %g): %s; converged as %d substeps\n",
-                   progress_shown ? "\n" : "", step, r.time, r.retry_reason.c_str(), r.substeps);
+                   progress_shown ? "\n" : "", r.step, r.time, r.retry_reason.c_str(), r.substeps);
       progress_shown = false;
     }
     if (!r.converged) {
-      ++failures;
-      std::fprintf(stderr, "%sstep %d (t = %g): %s after %d iterations, residual %.3g m/s\n",
-                   progress_shown ? "\n" : "", step, r.time, r.status.c_str(), r.iterations,
-                   r.residual);
-      progress_shown = false;
-      if (FLAGS_on_failure == "stop") {
-        std::fprintf(stderr, "stopping (--on_failure=stop)\n");
-        if (positions) positions->Write(sim.state());
-        return kStepFailureExitCode;
+      const bool diverged = r.status.rfind("diverged", 0) == 0;
+      if (diverged && r.status.find("after the divergence") != std::string::npos) {
+        // Every later step of a diverged run (--on_failure=continue): in the stats only.
+      } else if (diverged || !sim.integrator().is_variational()) {
+        std::fprintf(stderr, "%sstep %d (t = %g): %s\n", progress_shown ? "\n" : "", r.step, r.time,
+                     r.status.c_str());
+      } else {
+        std::fprintf(stderr, "%sstep %d (t = %g): %s after %d iterations, residual %.3g m/s\n",
+                     progress_shown ? "\n" : "", r.step, r.time, r.status.c_str(), r.iterations,
+                     r.residual);
       }
+      progress_shown = false;
     }
     const auto now = std::chrono::steady_clock::now();
     if (FLAGS_progress && std::chrono::duration<double>(now - start).count() > 3.0 &&
         std::chrono::duration<double>(now - last_progress).count() > 1.0) {
-      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  iterations %d  residual %.2e   ", step,
+      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  iterations %d  residual %.2e   ", r.step,
                    sim.steps(), r.time, r.iterations, r.residual);
       last_progress = now;
       progress_shown = true;
     }
-  }
+  };
+  const RunSummary run = RunTrajectory(sim, run_options);
   if (progress_shown) std::fprintf(stderr, "\n");
   if (positions) positions->Write(sim.state());
-  const EnergyReport e1 = sim.Energies();
-  const int n = std::max(1, sim.steps());
-  std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step\n",
-              sim.steps(), failures, substepped, static_cast<double>(total_iterations) / n,
-              1e3 * solve_seconds / n);
-  std::printf("energy: initial %.10g J, final %.10g J (kinetic %.6g, potential %.6g)\n", e0.total(),
-              e1.total(), e1.kinetic, e1.potential);
+  if (run.termination != RunTermination::kCompleted) {
+    std::fprintf(stderr, "stopping (--on_failure=stop): %s\n", run.message.c_str());
+  }
+  // "done: N steps" counts the steps taken; per step means per step taken.
+  std::string ending;
+  if (run.steps_done < run.steps_planned) {
+    ending += ", stopped after " + std::to_string(run.steps_done) + " of " +
+              std::to_string(run.steps_planned) + " steps";
+  }
+  if (run.diverged()) ending += ", diverged at step " + std::to_string(run.diverged_at);
+  std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step%s\n",
+              run.steps_done, run.failed, run.substepped, run.iterations_per_step(),
+              run.ms_per_step(), ending.c_str());
+  std::printf(
+      "energy: initial %.10g J, final %.10g J (kinetic %.6g, potential %.6g); largest "
+      "drift %.3g energy scales (%.3g J)\n",
+      run.initial_energies.total(), run.final_energies.total(), run.final_energies.kinetic,
+      run.final_energies.potential, run.max_energy_drift, run.energy_scale);
+  if (run.termination != RunTermination::kCompleted) return kStepFailureExitCode;
   return 0;
 }
 

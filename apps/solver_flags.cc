@@ -18,6 +18,9 @@ DEFINE_string(optimizer, "newton",
               "projected_newton (not Ceres)");
 DEFINE_double(dt, 0.0, "Time step [s], in [1e-12, 1e3]; default: the scene's time_step");
 DEFINE_int32(steps, -1, "Number of steps, in [0, 10000000]; default: the scene's steps");
+DEFINE_double(t_end, 0.0,
+              "End time [s], > 0: run t_end / dt steps (a whole number, or an error names a dt "
+              "that fits); not with --steps; default: the scene's steps");
 DEFINE_double(tolerance, 1e-5,
               "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step");
 DEFINE_int32(max_iterations, 0,
@@ -171,6 +174,13 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   }
   if (!FlagIsDefault("steps")) {
     o.steps = CheckFlagRange("steps", FLAGS_steps, 0, limits::kMaxSteps, "the scene's steps");
+  }
+  if (!FlagIsDefault("t_end")) {
+    if (!FlagIsDefault("steps")) {
+      throw InputError("flag", "--t_end", "give --steps or --t_end, not both");
+    }
+    o.t_end = CheckFlagRange("t_end", FLAGS_t_end, 0.0, limits::kMaxSteps * limits::kMaxTimeStep,
+                             "s", "the scene's steps", /*min_open=*/true);
   }
   o.energy_tolerance = CheckFlagRange("energy_tolerance", FLAGS_energy_tolerance, 0.0, 100.0, "",
                                       "the tolerance 0.1; 0 is no check");

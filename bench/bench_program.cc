@@ -10,6 +10,9 @@
 // Exit codes: 0 success (failed runs are rows, not errors), 2 bad input.
 #include <glob.h>
 
+#include <cerrno>
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -151,6 +154,49 @@ void ParseShard(const std::string& text, int* index, int* count) {
   }
 }
 
+// The fields of a CSV line (quoted fields may hold commas and doubled quotes).
+std::vector<std::string> CsvFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+// Opens --output for writing, creating its folder; an InputError says why not.
+std::ofstream OpenOutput(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code error;
+  if (!parent.empty() && !std::filesystem::is_directory(parent, error)) {
+    std::filesystem::create_directories(parent, error);
+    if (error) {
+      throw InputError(
+          "flag", "--output",
+          "cannot create the folder '" + ClipInput(parent.string()) + "': " + error.message());
+    }
+  }
+  std::ofstream out(path);
+  if (!out) {
+    throw InputError("flag", "--output",
+                     "cannot write '" + ClipInput(path) + "': " + std::strerror(errno));
+  }
+  return out;
+}
+
+// Merges shard files: every shard i/N of one sweep exactly once, every
+// configuration id of the sweep (0 .. configurations - 1) exactly once;
+// anything else is an InputError naming the shard or the file.
 int Merge() {
   std::vector<std::string> files;
   for (const std::string& pattern : SplitList(FLAGS_merge)) {
@@ -164,8 +210,14 @@ int Merge() {
   }
   std::sort(files.begin(), files.end());
   files.erase(std::unique(files.begin(), files.end()), files.end());
+  if (files.empty()) throw InputError("flag", "--merge", "no files");
   std::string header;
-  std::multimap<long, std::string> rows;
+  std::vector<std::string> columns;
+  int id_column = -1, shard_column = -1, size_column = -1;
+  std::map<long, std::pair<std::string, std::string>> rows;  // id -> (line, file)
+  std::map<std::string, std::string> shard_files;            // "i/N" -> file
+  long sweep_size = -1;
+  int shard_count = 0;
   for (const std::string& file : files) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(file, error)) {
@@ -175,22 +227,100 @@ int Merge() {
     if (!in) throw InputError("flag", "--merge", "cannot read '" + ClipInput(file) + "'");
     std::string line;
     if (!std::getline(in, line)) throw InputError("flag", "--merge", "'" + file + "' is empty");
-    if (header.empty()) header = line;
+    if (header.empty()) {
+      header = line;
+      columns = CsvFields(header);
+      for (int c = 0; c < static_cast<int>(columns.size()); ++c) {
+        if (columns[c] == "id") id_column = c;
+        if (columns[c] == "shard") shard_column = c;
+        if (columns[c] == "configurations") size_column = c;
+      }
+      if (id_column < 0 || shard_column < 0) {
+        throw InputError("flag", "--merge", "'" + file + "' has no id or shard column");
+      }
+    }
     if (line != header) {
       throw InputError("flag", "--merge", "'" + file + "' has a different header");
     }
     while (std::getline(in, line)) {
       if (line.empty()) continue;
-      rows.emplace(std::atol(line.c_str()), line);
+      const std::vector<std::string> fields = CsvFields(line);
+      if (fields.size() != columns.size()) {
+        throw InputError("flag", "--merge",
+                         "'" + file + "': a row has " + std::to_string(fields.size()) +
+                             " fields, the header " + std::to_string(columns.size()));
+      }
+      const long id = std::atol(fields[id_column].c_str());
+      const std::string& shard = fields[shard_column];
+      int index = 0, count = 0;
+      try {
+        ParseShard(shard, &index, &count);
+      } catch (const InputError&) {
+        throw InputError("flag", "--merge",
+                         "'" + file + "': configuration " + std::to_string(id) +
+                             " has no shard i/N but '" + ClipInput(shard) + "'");
+      }
+      if (shard_count == 0) shard_count = count;
+      if (count != shard_count) {
+        throw InputError("flag", "--merge",
+                         "shard " + shard + " ('" + file + "') is from a sweep of " +
+                             std::to_string(count) + " shards, others of " +
+                             std::to_string(shard_count));
+      }
+      const auto owner = shard_files.emplace(shard, file).first;
+      if (owner->second != file) {
+        throw InputError(
+            "flag", "--merge",
+            "shard " + shard + " is in two files: '" + owner->second + "' and '" + file + "'");
+      }
+      if (id % count != index) {
+        throw InputError("flag", "--merge",
+                         "'" + file + "': configuration " + std::to_string(id) +
+                             " does not belong to shard " + shard);
+      }
+      if (size_column >= 0) {
+        const long size = std::atol(fields[size_column].c_str());
+        if (sweep_size < 0) sweep_size = size;
+        if (size != sweep_size) {
+          throw InputError("flag", "--merge",
+                           "'" + file + "' is from a sweep of " + std::to_string(size) +
+                               " configurations, others of " + std::to_string(sweep_size));
+        }
+      }
+      const auto inserted = rows.emplace(id, std::make_pair(line, file));
+      if (!inserted.second) {
+        throw InputError("flag", "--merge",
+                         "configuration " + std::to_string(id) + " (shard " + shard +
+                             ") is twice: in '" + inserted.first->second.second + "' and '" + file +
+                             "'");
+      }
     }
   }
-  if (files.empty()) throw InputError("flag", "--merge", "no files");
-  std::ofstream out(FLAGS_output);
-  if (!out) throw InputError("flag", "--output", "cannot write '" + FLAGS_output + "'");
+  // Every configuration of the sweep: the ids 0 .. size - 1 (files written
+  // before the configurations column: up to the largest id seen).
+  const long expected =
+      sweep_size >= 0 ? sweep_size : (rows.empty() ? 0 : rows.rbegin()->first + 1);
+  for (long id = 0; id < expected; ++id) {
+    if (rows.count(id) == 0) {
+      const std::string shard =
+          std::to_string(id % std::max(1, shard_count)) + "/" + std::to_string(shard_count);
+      throw InputError(
+          "flag", "--merge",
+          "configuration " + std::to_string(id) + " is missing: shard " + shard +
+              (shard_files.count(shard) ? " ('" + shard_files[shard] + "') is incomplete"
+                                        : " is not among the files"));
+    }
+  }
+  if (!rows.empty() && rows.rbegin()->first >= expected) {
+    throw InputError("flag", "--merge",
+                     "configuration " + std::to_string(rows.rbegin()->first) +
+                         " is beyond the sweep's " + std::to_string(expected));
+  }
+  std::ofstream out = OpenOutput(FLAGS_output);
   out << header << '\n';
-  for (const auto& row : rows) out << row.second << '\n';
-  std::printf("merged %zu rows from %zu files into %s\n", rows.size(), files.size(),
-              FLAGS_output.c_str());
+  for (const auto& row : rows) out << row.second.first << '\n';
+  std::printf("merged %zu rows from %zu files (%zu shards) into %s\n", rows.size(), files.size(),
+              shard_files.size(), FLAGS_output.c_str());
   return 0;
 }
 
@@ -341,8 +471,7 @@ int Run(const EffectRegistry& registry) {
     }
     return 0;
   }
-  std::ofstream out(FLAGS_output);
-  if (!out) throw InputError("flag", "--output", "cannot write '" + FLAGS_output + "'");
+  std::ofstream out = OpenOutput(FLAGS_output);
   out << CsvHeader() << '\n' << std::flush;
 
   ReferenceCache references(FLAGS_reference_optimizer, FLAGS_reference_tolerance, &registry);
@@ -355,7 +484,7 @@ int Run(const EffectRegistry& registry) {
   auto run_once = [&](const RunConfig& config, int run, RunRow* row) {
     OptimizerSpec spec = specs.at(config.optimizer);
     spec.options.tolerance = config.tolerance;
-    row->result = RunTrajectory(config, spec);
+    row->result = RunConfiguration(config, spec);
     const bool complete = row->result.steps_done == config.steps;
     if (run >= config.warmup || !complete) row->wall.push_back(row->result.loop_seconds);
     return complete && run + 1 < config.warmup + config.repeats;
@@ -367,21 +496,14 @@ int Run(const EffectRegistry& registry) {
     row->reference_dt = std::nan("");
     const double t_end = config.dt * config.steps;
     if (FLAGS_errors && row->result.steps_done == config.steps) {
-      Eigen::VectorXd exact;
-      if (config.integrator != "quasi_static" && ExactFinalPositions(config.scene, t_end, &exact)) {
-        row->reference = "exact";
-        row->reference_error = 0.0;
-        row->position_error =
-            MaxNodeError(row->result.final_x, exact, row->result.free_nodes, row->result.dimension);
-      } else {
-        const Reference& ref = references.Get(config.scene, config.grid_size, config.integrator,
-                                              dt_min.at({config.scene, config.grid_size}), t_end);
-        row->reference = ref.description;
-        row->reference_dt = ref.dt;
-        row->reference_error = ref.error;
-        row->position_error =
-            MaxNodeError(row->result.final_x, ref.x, row->result.free_nodes, row->result.dimension);
-      }
+      const ReferenceSolution& ref =
+          references.Get(config.scene, config.grid_size, config.integrator,
+                         dt_min.at({config.scene, config.grid_size}), t_end);
+      row->reference = ref.exact ? "exact" : ref.description;
+      row->reference_dt = ref.exact ? std::nan("") : ref.dt;
+      row->reference_error = ref.error;
+      row->position_error = MaxNodeDistance(row->result.final_x, ref.x, row->result.free_nodes,
+                                            row->result.dimension);
     }
     out << CsvRow(*row) << '\n' << std::flush;
     std::fprintf(stderr,
@@ -397,6 +519,7 @@ int Run(const EffectRegistry& registry) {
   for (size_t i = 0; i < mine.size(); ++i) {
     rows[i].config = mine[i];
     rows[i].shard = FLAGS_shard;
+    rows[i].configurations = static_cast<int>(configs.size());
   }
   if (FLAGS_interleave) {
     // Round-robin: run r of every configuration before run r + 1 of any, so

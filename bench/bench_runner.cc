@@ -1,4 +1,5 @@
 #include "bench/bench_runner.h"
+#include "bench/commit.h"
 #include "sim/default_effects.h"
 
 #include <algorithm>
@@ -8,12 +9,12 @@
 #include <limits>
 #include <sstream>
 
-#include "apps/divergence.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
+#include "sim/run_trajectory.h"
 
 namespace ipstep {
 namespace bench {
@@ -150,7 +151,7 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
   return spec;
 }
 
-Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
+Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec) {
   Trajectory out;
   const auto setup_start = Clock::now();
   SceneLoadOptions load;
@@ -183,37 +184,30 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
   out.nodes = state.num_nodes();
   out.dimension = state.dimension;
   out.free_dofs = state.num_free_nodes() * state.dimension;
-  for (int i = 0; i < state.num_nodes(); ++i) {
-    if (state.is_free(i)) out.free_nodes.push_back(i);
-  }
-  out.initial_energy = sim->Energies().total();
-  const double scale = std::max(std::abs(out.initial_energy), 1e-300);
-  const auto loop_start = Clock::now();
-  for (int step = 0; step < config.steps; ++step) {
-    const StepReport report = sim->Step();
-    ++out.steps_done;
-    out.iterations += report.iterations;
-    out.evaluations += report.evaluations;
-    out.max_step_iterations = std::max(out.max_step_iterations, report.iterations);
-    if (variational) out.worst_residual = std::max(out.worst_residual, report.residual);
-    if (!report.converged) {
-      ++out.failed_steps;
-      if (out.status == "ok") out.status = "failed steps (first: " + report.status + ")";
-    }
-    const double drift = std::abs(report.energies.total() - out.initial_energy) / scale;
-    out.max_energy_drift = std::max(out.max_energy_drift, std::isfinite(drift) ? drift : 1e300);
-    if (RunDiverged(out.initial_energy, report.energies.total(),
-                    state.x.allFinite() && state.v.allFinite())) {
-      out.status = "diverged at step " + std::to_string(step + 1);  // apps/divergence.h
+  out.free_nodes = FreeNodes(state);
+  RunOptions run_options;
+  run_options.steps = config.steps;
+  run_options.max_wall_seconds = config.max_run_seconds;
+  const RunSummary run = ipstep::RunTrajectory(*sim, run_options);
+  out.initial_energy = run.initial_energies.total();
+  out.max_energy_drift = run.max_energy_drift;
+  out.steps_done = run.steps_done;
+  out.failed_steps = run.failed;
+  out.worst_residual = variational ? run.worst_residual : 0.0;
+  out.iterations = run.iterations;
+  out.max_step_iterations = run.max_step_iterations;
+  out.evaluations = run.evaluations;
+  out.loop_seconds = run.wall_seconds;
+  switch (run.termination) {
+    case RunTermination::kDiverged:
+      out.status = "diverged at step " + std::to_string(run.diverged_at);
       break;
-    }
-    if (config.max_run_seconds > 0.0 && Since(loop_start) > config.max_run_seconds &&
-        step + 1 < config.steps) {
-      out.status = "timeout after " + std::to_string(step + 1) + " steps";
+    case RunTermination::kTimeout:
+      out.status = "timeout after " + std::to_string(run.steps_done) + " steps";
       break;
-    }
+    default:
+      out.status = run.failed > 0 ? "failed steps (first: " + run.first_failure + ")" : "ok";
   }
-  out.loop_seconds = Since(loop_start);
   out.final_x = state.x;
   if (spec.projected_newton()) {
     out.phases = static_cast<const ProjectedNewtonSolver&>(sim->step_solver()).timings();
@@ -221,63 +215,36 @@ Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec) {
   return out;
 }
 
-bool ExactFinalPositions(const std::string& scene, double t, Eigen::VectorXd* x) {
-  if (scene != "oscillator") return false;
-  x->resize(4);
-  *x << 0.0, 0.0, 1.0 + 0.1 * std::cos(t), 0.0;
-  return true;
-}
-
-double MaxNodeError(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
-                    const std::vector<int>& free_nodes, int dimension) {
-  if (x.size() != y.size() || x.size() == 0) return std::nan("");
-  double worst = 0.0;
-  for (int i : free_nodes) {
-    worst = std::max(
-        worst, (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm());
-  }
-  return std::isfinite(worst) ? worst : std::nan("");
-}
-
 std::string ReferenceCache::ReferenceIntegrator(const std::string& integrator) {
-  return integrator == "quasi_static" ? "quasi_static" : "newmark";
+  return ReferenceIntegratorFor(integrator);
 }
 
-const Reference& ReferenceCache::Get(const std::string& scene, int grid_size,
-                                     const std::string& integrator, double dt_min, double t_end) {
+const ReferenceSolution& ReferenceCache::Get(const std::string& scene, int grid_size,
+                                             const std::string& integrator, double dt_min,
+                                             double t_end) {
   const std::string method = ReferenceIntegrator(integrator);
   const auto key = std::make_tuple(scene, grid_size, method, dt_min, t_end);
   auto found = cache_.find(key);
   if (found != cache_.end()) return found->second;
-  Reference& reference = cache_[key];
   const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
-  RunConfig config;
-  config.effects = effects_;
-  config.scene = scene;
-  config.grid_size = grid_size;
-  config.integrator = method;
-  config.optimizer = optimizer_;
-  config.tolerance = tolerance_;
-  Trajectory runs[2];
-  for (int r = 0; r < 2; ++r) {
-    const int refine = r == 0 ? 16 : 8;
-    config.steps = static_cast<int>(std::llround(t_end / dt_min * refine));
-    config.dt = t_end / config.steps;
-    runs[r] = RunTrajectory(config, spec);
-    if (r == 0) reference.dt = config.dt;
+  SceneLoadOptions load;
+  load.grid_size = grid_size;
+  const EffectRegistry& effects = effects_ ? *effects_ : DefaultEffects();
+  load.extra_effects = effects.UserNames();
+  SimulationOptions base;
+  base.effects = &effects;
+  ReferenceOptions options;
+  options.integrator = method;
+  options.optimizer = spec.options;
+  ReferenceSolution reference;
+  try {
+    reference = ComputeReference(LoadScene(scene, load), base, options, dt_min, t_end);
+  } catch (const std::exception& e) {
+    reference.ok = false;
+    reference.description = std::string("FAILED: ") + e.what();
   }
-  const double order = method == "newmark" ? 2.0 : 1.0;
-  reference.x = runs[0].final_x;
-  reference.ok = runs[0].status == "ok" && runs[1].status == "ok";
-  reference.error =
-      MaxNodeError(runs[0].final_x, runs[1].final_x, runs[0].free_nodes, runs[0].dimension) /
-      (std::pow(2.0, order) - 1.0);
-  char text[160];
-  std::snprintf(text, sizeof(text), "%s dt=%.4g tol=%g %s%s", method.c_str(), reference.dt,
-                tolerance_, optimizer_.c_str(),
-                reference.ok ? "" : (" FAILED: " + runs[0].status).c_str());
-  reference.description = text;
-  return reference;
+  if (optimizer_.find('+') != std::string::npos) reference.description += " (" + optimizer_ + ")";
+  return cache_.emplace(key, std::move(reference)).first->second;
 }
 
 std::string CsvHeader() {
@@ -285,7 +252,8 @@ std::string CsvHeader() {
          "repeats,warmup,wall_s_median,wall_s_min,wall_per_sim_s,ms_per_step,setup_s,"
          "iterations_per_step,max_step_iterations,evaluations_per_step,failed_steps,"
          "worst_residual,steps_done,status,position_error,energy_drift,reference,reference_dt,"
-         "reference_error,pn_hessian_s,pn_factorize_s,pn_line_search_s,pn_gradient_s,shard";
+         "reference_error,pn_hessian_s,pn_factorize_s,pn_line_search_s,pn_gradient_s,shard,"
+         "configurations,commit";
 }
 
 std::string CsvRow(const RunRow& row) {
@@ -296,7 +264,7 @@ std::string CsvRow(const RunRow& row) {
       row.wall.empty() ? std::nan("") : *std::min_element(row.wall.begin(), row.wall.end());
   const int steps = std::max(1, t.steps_done);
   const bool ran = t.steps_done > 0;
-  // A diverged run's drift is meaningless, and so is a relative drift from E_0 = 0.
+  // A diverged run's drift is meaningless.
   const bool diverged = t.status.rfind("diverged", 0) == 0;
   const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
@@ -310,12 +278,13 @@ std::string CsvRow(const RunRow& row) {
       << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
       << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
       << Number(row.position_error) << ','
-      << Number(ran && !diverged && t.initial_energy != 0.0 ? t.max_energy_drift : std::nan(""))
-      << ',' << Quote(row.reference) << ',' << Number(row.reference_dt) << ','
-      << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
+      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ',' << Quote(row.reference)
+      << ',' << Number(row.reference_dt) << ',' << Number(row.reference_error) << ','
+      << Number(pn ? t.phases.hessian : std::nan("")) << ','
       << Number(pn ? t.phases.factorize : std::nan("")) << ','
       << Number(pn ? t.phases.line_search : std::nan("")) << ','
-      << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard;
+      << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard << ','
+      << row.configurations << ',' << IPSTEP_COMMIT;
   return out.str();
 }
 

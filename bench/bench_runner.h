@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "sim/reference.h"
 #include "sim/simulation.h"
 #include "solver/projected_newton_solver.h"
 
@@ -53,7 +54,9 @@ struct Trajectory {
   Eigen::VectorXd final_x;
   std::vector<int> free_nodes;
   double initial_energy = 0.0;
-  double max_energy_drift = 0.0;  // max_n |E_n - E_0| / |E_0| (the CSV leaves it out for E_0 = 0)
+  // max_n |E_n - E_0| / E_s(t_n), in the divergence rule's energy scales
+  // (sim/divergence.h)
+  double max_energy_drift = 0.0;
   int steps_done = 0;
   int failed_steps = 0;
   double worst_residual = 0.0;  // largest stopping measure at the end of a step [m/s]
@@ -62,7 +65,7 @@ struct Trajectory {
   long evaluations = 0;
   double loop_seconds = 0.0;   // Step() loop
   double setup_seconds = 0.0;  // scene loading + Simulation construction
-  // ok | failed steps (first: ...) | diverged at step N (apps/divergence.h: the
+  // ok | failed steps (first: ...) | diverged at step N (sim/divergence.h: the
   // run stops there) | timeout after N steps | error: ...
   std::string status = "ok";
   int nodes = 0;
@@ -74,7 +77,7 @@ struct Trajectory {
 
 // Runs config.steps steps once. Never throws for run failures (they go into
 // status); throws InputError only for an invalid config.
-Trajectory RunTrajectory(const RunConfig& config, const OptimizerSpec& spec);
+Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec);
 
 // One CSV row per config.
 struct RunRow {
@@ -86,24 +89,14 @@ struct RunRow {
   double reference_dt = 0.0;
   double reference_error = 0.0;  // estimated error of the reference itself [m]
   std::string shard;
+  int configurations = 0;  // in the whole sweep (all shards): ipstep_bench --merge checks them
 };
 
 std::string CsvHeader();
 std::string CsvRow(const RunRow& row);
 
-// The exact final positions where known (the oscillator: x = 1 + 0.1 cos t).
-bool ExactFinalPositions(const std::string& scene, double t, Eigen::VectorXd* x);
-
-// Reference final positions for (scene, grid, integrator family, t_end):
-// `integrator` at dt_ref = dt_min / 16 with a tight tolerance, and at 2 dt_ref to
-// estimate its own error as |x(2 dt_ref) - x(dt_ref)| / (2^p - 1).
-struct Reference {
-  Eigen::VectorXd x;
-  double dt = 0.0;
-  double error = 0.0;
-  std::string description;
-  bool ok = false;
-};
+// Reference final positions for (scene, grid, integrator family, t_end)
+// (sim/reference.h: ComputeReference), computed once per key.
 class ReferenceCache {
  public:
   ReferenceCache(std::string optimizer, double tolerance, const EffectRegistry* effects = nullptr)
@@ -111,19 +104,15 @@ class ReferenceCache {
   // The reference integrator for runs of `integrator`: quasi_static for
   // quasi_static (a different problem), newmark (trapezoidal, order 2) otherwise.
   static std::string ReferenceIntegrator(const std::string& integrator);
-  const Reference& Get(const std::string& scene, int grid_size, const std::string& integrator,
-                       double dt_min, double t_end);
+  const ReferenceSolution& Get(const std::string& scene, int grid_size,
+                               const std::string& integrator, double dt_min, double t_end);
 
  private:
   std::string optimizer_;
   double tolerance_;
   const EffectRegistry* effects_;
-  std::map<std::tuple<std::string, int, std::string, double, double>, Reference> cache_;
+  std::map<std::tuple<std::string, int, std::string, double, double>, ReferenceSolution> cache_;
 };
-
-// Final-position error: max over free nodes of |x_i - y_i| [m].
-double MaxNodeError(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
-                    const std::vector<int>& free_nodes, int dimension);
 
 }  // namespace bench
 }  // namespace ipstep

@@ -16,8 +16,8 @@
 --time: ms per step from the median of the timed runs (default) or from the
 fastest one (min: on a shared machine, the run least disturbed by others).
 
-Runs leave the plots when they diverged (a position, velocity or energy became
-non-finite, or |E - E0| > 1e6 |E0|: apps/divergence.h); the tables mark them.
+Runs leave the plots when they diverged (status "diverged at step N": ipstep's
+one rule, sim/divergence.h); the tables mark them.
 
 Needs only matplotlib and the standard library: run it with the interpreter that
 has matplotlib (Debian: /usr/bin/python3 with python3-matplotlib; a python3 from
@@ -39,9 +39,9 @@ except ImportError:
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-# apps/divergence.h: kDivergedEnergyRatio. CSV files written before ipstep_bench
-# marked such runs "diverged" have status "ok" and a huge energy_drift (ipstep_bench
-# now leaves energy_drift empty when E_0 = 0, where a relative drift means nothing).
+# CSV files written before ipstep_bench marked such runs "diverged" have status
+# "ok" and a huge energy_drift (then |E - E0| / |E0|; now in the energy scales of
+# sim/divergence.h, whose energy bound is the same 1e6).
 DIVERGED_ENERGY_RATIO = 1e6
 
 
@@ -74,7 +74,7 @@ def ok(r):
 
 
 def diverged(r):
-    """The run diverged (apps/divergence.h)."""
+    """The run diverged (sim/divergence.h; for old CSV files, the energy bound)."""
     if r["status"].startswith("diverged"):
         return True
     drift, error = r["energy_drift"], r["position_error"]

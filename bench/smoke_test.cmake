@@ -13,12 +13,30 @@ foreach(shard 0 1)
     message(FATAL_ERROR "shard ${shard} failed (${rc}):\n${log}")
   endif()
 endforeach()
-execute_process(COMMAND ${BENCH} --merge=${WORK_DIR}/shard*.csv --output=${WORK_DIR}/all.csv
+# The merged file's folder does not exist yet: --output creates it.
+execute_process(COMMAND ${BENCH} --merge=${WORK_DIR}/shard*.csv --output=${WORK_DIR}/merged/all.csv
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE log)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "merge failed (${rc}):\n${log}")
 endif()
-file(STRINGS ${WORK_DIR}/all.csv lines)
+file(STRINGS ${WORK_DIR}/merged/all.csv lines)
+# A missing shard and a shard given twice are refused (exit 2), naming the shard.
+file(COPY_FILE ${WORK_DIR}/shard0.csv ${WORK_DIR}/copy_of_shard0.csv)
+foreach(case "missing;${WORK_DIR}/shard0.csv;shard 1/2"
+             "duplicated;${WORK_DIR}/shard0.csv,${WORK_DIR}/shard1.csv,${WORK_DIR}/copy_of_shard0.csv;shard 0/2 is in two files")
+  list(GET case 0 name)
+  list(GET case 1 inputs)
+  list(GET case 2 expected)
+  execute_process(COMMAND ${BENCH} --merge=${inputs} --output=${WORK_DIR}/${name}.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE log)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "a merge with a ${name} shard should exit with 2, got ${rc}:\n${log}")
+  endif()
+  string(FIND "${log}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "a merge with a ${name} shard should say '${expected}':\n${log}")
+  endif()
+endforeach()
 list(LENGTH lines count)
 # 2 scenes x (2 variational integrators x 3 optimisers + symplectic Euler) x 2 dt = 28 rows.
 if(NOT count EQUAL 29)

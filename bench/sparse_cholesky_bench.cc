@@ -18,6 +18,7 @@
 #include "core/input_error.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
+#include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 #include "solver/node_ordering.h"
 #include "solver/projected_newton_solver.h"
@@ -67,9 +68,10 @@ int main(int argc, char** argv) {
       potential = p;
       return made;
     });
-    const auto step_start = Clock::now();
-    const StepReport report = sim.Step();
-    const double step_seconds = Since(step_start);
+    StepReport report;
+    RunOptions run;
+    run.after_step = [&report](const StepReport& r) { report = r; };
+    const double step_seconds = RunTrajectory(sim, run).wall_seconds;
     auto start = Clock::now();
     if (!solver->AssembleHessian(sim.state().x)) {
       std::fprintf(stderr, "the Hessian cannot be evaluated at the step's result\n");

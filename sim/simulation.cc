@@ -28,6 +28,27 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
                          limits::RangeText(limits::kMinTimeStep, limits::kMaxTimeStep, "s") +
                          ", got " + limits::FormatLimit(time_step_));
   }
+  if (options.t_end != 0.0) {
+    if (options.steps >= 0) {
+      throw InputError("options", "SimulationOptions.t_end",
+                       "give the steps or the end time, not both");
+    }
+    if (!(options.t_end > 0.0 && options.t_end <= limits::kMaxSteps * limits::kMaxTimeStep)) {
+      throw InputError("options", "SimulationOptions.t_end",
+                       "must be a time > 0 s, got " + limits::FormatLimit(options.t_end));
+    }
+    const double steps = std::round(options.t_end / time_step_);
+    if (!(steps >= 1.0) || std::abs(steps * time_step_ - options.t_end) > 1e-9 * options.t_end) {
+      const double fit = options.t_end / std::max(1.0, std::ceil(options.t_end / time_step_));
+      throw InputError("options", "SimulationOptions.t_end",
+                       limits::FormatLimit(options.t_end) +
+                           " s is not a whole number of steps of " +
+                           limits::FormatLimit(time_step_) + " s (" +
+                           limits::FormatLimit(options.t_end / time_step_) +
+                           "); a step that fits: " + limits::FormatLimit(fit) + " s");
+    }
+    steps_ = static_cast<int>(std::min(steps, static_cast<double>(limits::kMaxSteps) + 1.0));
+  }
   if (steps_ > limits::kMaxSteps) {
     throw InputError(
         "options", "SimulationOptions.steps",

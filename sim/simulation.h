@@ -24,6 +24,10 @@ struct SimulationOptions {
   OptimizerOptions optimizer;
   double time_step = 0.0;  // [s]; 0: the scene's time_step
   int steps = -1;          // -1: the scene's steps
+  // [s]; > 0: run to this time, steps = t_end / time_step, which must be a
+  // whole number (within 1e-9; an InputError names the step that would fit);
+  // not with steps >= 0.
+  double t_end = 0.0;
   // Energy balance (sim/energy_balance.h), variational integrators: a step
   // whose energy grows by more than this fraction of the energy in motion
   // fails with status "energy growth". 0: no check.

@@ -544,6 +544,54 @@ TEST_F(ProgramInput, FailedStepStopsWithExitCodeThree) {
   EXPECT_NE(c.output.find("2 failed"), std::string::npos) << c.output;
 }
 
+// Symplectic Euler past its stability limit (the cloth at its own 1/60 s): the
+// run is diverged (sim/divergence.h), never "converged" while its energy grows.
+// It stops there with exit code 3; with --on_failure=continue every later step
+// says "diverged" in the stats and the summary counts them as failed.
+TEST_F(ProgramInput, DivergedStepsAreNotConverged) {
+  const std::string stats = (dir_ / "diverged_stats.csv").string();
+  const Outcome stop = RunIpstep(
+      "--scene=cloth --grid_size=6 --integrator=symplectic_euler "
+      "--steps=40 --stats=" +
+      stats);
+  EXPECT_EQ(stop.exit_code, 3) << stop.output;
+  EXPECT_NE(stop.output.find(", diverged at step "), std::string::npos) << stop.output;
+  EXPECT_NE(stop.output.find("stopping (--on_failure=stop): diverged at step "), std::string::npos)
+      << stop.output;
+  const Outcome go = RunIpstep(
+      "--scene=cloth --grid_size=6 --integrator=symplectic_euler "
+      "--steps=40 --on_failure=continue --stats=" +
+      stats);
+  EXPECT_EQ(go.exit_code, 0) << go.output;
+  std::ifstream in(stats);
+  std::string line;
+  std::getline(in, line);
+  int rows = 0, diverged = 0, converged_after = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    const bool is_diverged = line.find("diverged: ") != std::string::npos;
+    if (is_diverged || diverged > 0) {
+      diverged += is_diverged;
+      converged_after += line.find(",1,\"") != std::string::npos;  // converged, status
+    }
+  }
+  EXPECT_EQ(rows, 40);
+  EXPECT_GT(diverged, 0);
+  EXPECT_EQ(converged_after, 0);
+  EXPECT_NE(go.output.find(std::to_string(diverged) + " failed"), std::string::npos) << go.output;
+}
+
+// --t_end: the steps follow from it; a t_end that is no whole number of steps
+// names a step that fits; not with --steps.
+TEST_F(ProgramInput, EndTimeSetsTheSteps) {
+  const Outcome o = RunIpstep("--scene=oscillator --dt=0.1 --t_end=0.5");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("done: 5 steps"), std::string::npos) << o.output;
+  ExpectInputError("--scene=oscillator --dt=0.1 --t_end=0.55", "--t_end", "a step that fits: ");
+  ExpectInputError("--scene=oscillator --steps=3 --t_end=0.5", "--t_end", "not both");
+  ExpectInputError("--scene=oscillator --t_end=-1", "--t_end", "");
+}
+
 TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {
   for (const char* scene : {"oscillator", "spring_pendulum", "cloth", "fpu", "hanging_square"}) {
     for (const char* integrator :

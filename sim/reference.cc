@@ -1,0 +1,107 @@
+#include "sim/reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/input_error.h"
+#include "core/input_limits.h"
+#include "sim/run_trajectory.h"
+
+namespace ipstep {
+
+bool ExactPositions(const Scene& scene, double t, Eigen::VectorXd* x) {
+  // The built-in scene (problems/oscillator.json), not a file that took its name.
+  if (scene.name != "oscillator" || scene.source != "problems/oscillator.json") return false;
+  if (x == nullptr) return true;
+  *x = Eigen::Map<const Eigen::VectorXd>(scene.positions.data(), scene.positions.size());
+  (*x)[2] = 1.0 + 0.1 * std::cos(t);
+  return true;
+}
+
+double MaxNodeDistance(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                       const std::vector<int>& nodes, int dimension) {
+  if (x.size() != y.size() || x.size() == 0) return std::nan("");
+  double worst = 0.0;
+  for (int i : nodes) {
+    worst = std::max(
+        worst, (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm());
+  }
+  return std::isfinite(worst) ? worst : std::nan("");
+}
+
+std::vector<int> FreeNodes(const State& state) {
+  std::vector<int> nodes;
+  for (int i = 0; i < state.num_nodes(); ++i) {
+    if (state.is_free(i)) nodes.push_back(i);
+  }
+  return nodes;
+}
+
+std::string ReferenceIntegratorFor(const std::string& integrator) {
+  return integrator == "quasi_static" ? "quasi_static" : "newmark";
+}
+
+ReferenceSolution ComputeReference(const Scene& scene, const SimulationOptions& base,
+                                   const ReferenceOptions& reference, double dt_min, double t_end) {
+  ReferenceSolution out;
+  if (reference.integrator != "quasi_static" && ExactPositions(scene, t_end, &out.x)) {
+    out.exact = out.ok = true;
+    out.description = "exact solution";
+    return out;
+  }
+  if (reference.refinement < 1 || reference.refinement > 1024) {
+    throw InputError("options", "ReferenceOptions.refinement", "must be in [1, 1024]");
+  }
+  SimulationOptions options = base;
+  options.integrator = IntegratorOptions{reference.integrator, 0.25, 0.5};
+  options.optimizer = reference.optimizer;
+  Eigen::VectorXd x[2];
+  std::vector<int> free_nodes;
+  int dimension = scene.dimension;
+  bool ok = true;
+  std::string first_failure;
+  for (int r = 0; r < 2; ++r) {
+    const int refine = r == 0 ? reference.refinement : std::max(1, reference.refinement / 2);
+    const double steps = std::max(1.0, std::round(t_end / dt_min * refine));
+    if (!(steps <= limits::kMaxSteps)) {
+      throw InputError("options", "ReferenceOptions.refinement",
+                       "the reference would take " + limits::FormatLimit(steps) +
+                           " steps, more than " + std::to_string(limits::kMaxSteps));
+    }
+    options.steps = static_cast<int>(steps);
+    options.time_step = t_end / options.steps;
+    Simulation sim(scene, options);
+    RunOptions run_options;
+    const RunSummary run = RunTrajectory(sim, run_options);
+    x[r] = sim.state().x;
+    if (r == 0) {
+      out.dt = options.time_step;
+      out.steps = run.steps_done;
+      out.failed_steps = run.failed;
+      free_nodes = FreeNodes(sim.state());
+      dimension = sim.state().dimension;
+    }
+    if (run.failed > 0 || run.termination != RunTermination::kCompleted) {
+      ok = false;
+      if (first_failure.empty()) first_failure = run.message;
+      if (run.first_failure.size() > 0 && run.termination == RunTermination::kCompleted) {
+        first_failure =
+            std::to_string(run.failed) + " failed steps (first: " + run.first_failure + ")";
+      }
+    }
+  }
+  const double order = reference.integrator == "newmark" ? 2.0 : 1.0;
+  out.x = x[0];
+  out.ok = ok;
+  out.error = MaxNodeDistance(x[0], x[1], free_nodes, dimension) / (std::pow(2.0, order) - 1.0);
+  char text[200];
+  std::snprintf(text, sizeof(text), "%s%s dt=%.4g tol=%g %s", reference.integrator.c_str(),
+                reference.integrator == "newmark" ? "(1/4,1/2)" : "", out.dt,
+                reference.optimizer.tolerance, OptimizerName(reference.optimizer.optimizer));
+  out.description = text;
+  if (!ok) out.description += " FAILED: " + first_failure;
+  return out;
+}
+
+}  // namespace ipstep

@@ -1,0 +1,81 @@
+// The run loop: steps a Simulation to the end, counts what happened and
+// decides when the run stops. The one loop of ipstep, ipstep_compare and
+// ipstep_bench (they only add flags and formatting) and of library users:
+//   Simulation sim(scene, options);
+//   const RunSummary run = RunTrajectory(sim, RunOptions{});
+//   std::printf("%s\n", run.message.c_str());
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "sim/simulation.h"
+
+namespace ipstep {
+
+struct RunOptions {
+  // Steps to take; -1: the rest of the simulation's steps() (steps() -
+  // steps_taken()).
+  int steps = -1;
+  // Stop at the first failed step (not converged, also as substeps), with
+  // termination kStepFailed. Otherwise failed steps are counted and the run goes
+  // on.
+  bool stop_on_failure = false;
+  // Stop at the first diverged step (sim/divergence.h), with termination
+  // kDiverged. Otherwise the run goes on and every later step is "diverged" too.
+  bool stop_on_divergence = true;
+  // Stop once the loop has run this long [s] with steps left (kTimeout); 0: no
+  // limit.
+  double max_wall_seconds = 0.0;
+  // Called before step k (1-based, counting this run's steps) and after it with
+  // its report (status "diverged: ..." once the run diverged). May be empty.
+  std::function<void(int step)> before_step;
+  std::function<void(const StepReport& report)> after_step;
+};
+
+enum class RunTermination {
+  kCompleted,   // every planned step taken (failed steps, if any, are counted)
+  kStepFailed,  // stopped at a failed step (RunOptions::stop_on_failure)
+  kDiverged,    // stopped at a diverged step (RunOptions::stop_on_divergence)
+  kTimeout,     // stopped by RunOptions::max_wall_seconds
+};
+const char* RunTerminationName(RunTermination termination);  // completed, step failed, ...
+
+struct RunSummary {
+  int steps_planned = 0;
+  int steps_done = 0;
+  int failed = 0;      // steps not converged, also as substeps (diverged steps included)
+  int substepped = 0;  // steps that converged only as substeps
+  long iterations = 0;
+  long evaluations = 0;
+  int max_step_iterations = 0;
+  double worst_residual = 0.0;  // largest stopping measure at the end of a step [m/s]
+  double wall_seconds = 0.0;    // the whole loop, callbacks included
+  double step_seconds = 0.0;    // the steps alone (sum of StepReport::wall_seconds)
+  EnergyReport initial_energies;
+  EnergyReport final_energies;
+  // max over steps of |E_n - E_0| / E_s(t_n), the divergence rule's energy
+  // scale (sim/divergence.h); meaningful for every scene (also E_0 = 0).
+  double max_energy_drift = 0.0;
+  double energy_scale = 0.0;  // E_s at the end [J]
+  int first_failed_step = 0;  // 0: none
+  std::string first_failure;  // its status
+  int diverged_at = 0;        // 0: did not diverge
+  std::string divergence;     // why (sim/divergence.h)
+  RunTermination termination = RunTermination::kCompleted;
+  std::string message;  // one line: how the run ended
+
+  double iterations_per_step() const {
+    return steps_done > 0 ? static_cast<double>(iterations) / steps_done : 0.0;
+  }
+  // Per step taken, not per step planned.
+  double ms_per_step() const { return steps_done > 0 ? 1e3 * step_seconds / steps_done : 0.0; }
+  bool diverged() const { return diverged_at > 0; }
+};
+
+// Runs `sim` from its current state. Never throws for what happens in a step
+// (a failure or a divergence is in the summary); throws InputError for
+// options out of range.
+RunSummary RunTrajectory(Simulation& sim, const RunOptions& options = RunOptions{});
+
+}  // namespace ipstep
