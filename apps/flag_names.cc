@@ -26,6 +26,13 @@ const std::vector<FlagName>& FlagNames() {
       {"options: SimulationOptions.time_step", "dt"},
       {"options: SimulationOptions.steps", "steps"},
       {"options: SimulationOptions.t_end", "t_end"},
+      // sim/step_size_controller.cc, sim/run_trajectory.cc
+      {"options: AdaptiveOptions.error_tolerance", "error_tolerance"},
+      {"options: AdaptiveOptions.t_end", "t_end"},
+      {"options: AdaptiveOptions.initial_time_step", "dt"},
+      {"options: AdaptiveOptions.min_time_step", "min_dt"},
+      {"options: AdaptiveOptions.max_time_step", "max_dt"},
+      {"options: RunOptions.adaptive", "adaptive"},
       // problems/scene_loader.cc
       {"options: SceneLoadOptions.grid_size", "grid_size"},
       // io/: the names apps/ipstep_program.cc gives its outputs
@@ -43,6 +50,15 @@ const std::vector<UnmappedName>& UnmappedNames() {
        "the contact flags are range-checked and checked against the scene's effects in "
        "apps/contact_flags.cc before they become overrides, and one effect's overrides come "
        "from several flags (--contact_kappa, --contact_dhat)"},
+      {"options: SimulationOptions.accept_residual",
+       "set from --error_tolerance and the end time (sim/step_size_controller.h), not a flag "
+       "of its own"},
+      {"options: AdaptiveOptions.safety",
+       "the controller's constants (sim/step_size_controller.h) are not flags"},
+      {"options: AdaptiveOptions.max_growth",
+       "the controller's constants (sim/step_size_controller.h) are not flags"},
+      {"options: AdaptiveOptions.max_shrink",
+       "the controller's constants (sim/step_size_controller.h) are not flags"},
       {"options: RunOptions.steps",
        "the programs run a Simulation's own steps (--steps, --t_end) or ipstep_bench's checked "
        "--steps"},

@@ -25,6 +25,7 @@
 #include "problems/scene_loader.h"
 #include "sim/run_trajectory.h"
 #include "sim/simulation.h"
+#include "sim/step_size_controller.h"
 
 DEFINE_string(on_failure, "stop",
               "When a step fails (not converged, energy growth, penetration, non-finite) even "
@@ -40,6 +41,15 @@ DEFINE_string(frames, "",
               "obstacles) at its simulated time; tools/animate.py DIR OUT.gif draws it");
 DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
 DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer than 3 s");
+DEFINE_bool(adaptive, false,
+            "Error-controlled time steps to the end time (--t_end, default the scene's "
+            "time_step x steps): each step's local error estimate within --error_tolerance x "
+            "h / t_end, rejected steps retried smaller; --dt is the first step");
+DEFINE_double(error_tolerance, 1e-3,
+              "With --adaptive: the position error [m] to reach at the end time, > 0");
+DEFINE_double(min_dt, 0.0,
+              "With --adaptive: the smallest step [s]; default max(1e-12, 1e-9 t_end)");
+DEFINE_double(max_dt, 0.0, "With --adaptive: the largest step [s]; default t_end / 10");
 
 namespace ipstep {
 namespace {
@@ -55,7 +65,60 @@ int Run(const EffectRegistry& registry) {
   CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
   CheckContactFlagsApply(scene);
+  RunOptions run_options;
+  if (FLAGS_adaptive) {
+    AdaptiveOptions& adaptive = run_options.adaptive_options;
+    run_options.adaptive = true;
+    if (!FlagIsDefault("steps")) {
+      throw InputError("flag", "--steps",
+                       "an --adaptive run's steps follow from the error; "
+                       "give the end time with --t_end");
+    }
+    const double dt = options.time_step > 0.0 ? options.time_step : scene.time_step;
+    adaptive.t_end = options.t_end > 0.0 ? options.t_end : dt * scene.steps;
+    if (!(adaptive.t_end > 0.0)) {
+      throw InputError("flag", "--t_end", "an --adaptive run needs an end time > 0");
+    }
+    options.t_end = 0.0;  // the steps follow from the error, not from dt
+    adaptive.initial_time_step = dt;
+    adaptive.error_tolerance = CheckFlagRange("error_tolerance", FLAGS_error_tolerance, 0.0, 1e6,
+                                              "m", "", /*min_open=*/true);
+    if (!FlagIsDefault("min_dt")) {
+      adaptive.min_time_step = CheckFlagRange("min_dt", FLAGS_min_dt, limits::kMinTimeStep,
+                                              limits::kMaxTimeStep, "s", "");
+    }
+    if (!FlagIsDefault("max_dt")) {
+      adaptive.max_time_step = CheckFlagRange("max_dt", FLAGS_max_dt, limits::kMinTimeStep,
+                                              limits::kMaxTimeStep, "s", "");
+    }
+    if (adaptive.min_time_step > 0.0 && adaptive.max_time_step > 0.0 &&
+        adaptive.min_time_step > adaptive.max_time_step) {
+      throw InputError("flag", "--min_dt", "must not exceed --max_dt");
+    }
+    // The solve's tolerance follows the error budget unless --tolerance says.
+    if (FlagIsDefault("tolerance")) {
+      options.optimizer.tolerance = AdaptiveSolverTolerance(adaptive);
+    }
+    options.accept_residual = AdaptiveStallResidual(adaptive);
+    options.max_substeps = 1;  // the controller retries failed steps
+    if (!FlagIsDefault("max_substeps")) {
+      throw InputError("flag", "--max_substeps",
+                       "an --adaptive run retries failed steps smaller itself");
+    }
+  } else {
+    for (const char* flag : {"error_tolerance", "min_dt", "max_dt"}) {
+      if (!FlagIsDefault(flag)) {
+        throw InputError("flag", std::string("--") + flag, "applies with --adaptive only");
+      }
+    }
+  }
   Simulation sim(scene, options);
+  if (run_options.adaptive && sim.integrator().order() < 1) {
+    throw InputError("flag", "--adaptive",
+                     sim.integrator().name() +
+                         " has no time-discretisation error to control; adaptive steps need a "
+                         "dynamic integrator");
+  }
 
   std::unique_ptr<StatsWriter> stats;
   std::unique_ptr<IterationLogWriter> iterations;
@@ -79,9 +142,18 @@ int Run(const EffectRegistry& registry) {
   std::printf("scene %s (%s): %d nodes, %d free, dimension %d\n", scene.name.c_str(),
               scene.source.c_str(), sim.state().num_nodes(), sim.state().num_free_nodes(),
               scene.dimension);
-  std::printf("integrator %s, optimizer %s, dt %g s, %d steps, tolerance %g m/s\n",
-              sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer),
-              sim.time_step(), sim.steps(), options.optimizer.tolerance);
+  if (run_options.adaptive) {
+    const AdaptiveOptions& adaptive = run_options.adaptive_options;
+    std::printf(
+        "integrator %s, optimizer %s, adaptive steps to t = %g s for an error of %g m "
+        "(first dt %g s), tolerance %g m/s\n",
+        sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer), adaptive.t_end,
+        adaptive.error_tolerance, adaptive.initial_time_step, options.optimizer.tolerance);
+  } else {
+    std::printf("integrator %s, optimizer %s, dt %g s, %d steps, tolerance %g m/s\n",
+                sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer),
+                sim.time_step(), sim.steps(), options.optimizer.tolerance);
+  }
   if (sim.integrator().is_variational()) {
     std::string solver = sim.step_solver().LinearSolverDescription();
     if (solver.empty()) solver = "no linear solver";
@@ -101,7 +173,6 @@ int Run(const EffectRegistry& registry) {
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   bool progress_shown = false;
-  RunOptions run_options;
   run_options.stop_on_failure = FLAGS_on_failure == "stop";
   // With --on_failure=continue a diverged run goes on (its steps are "diverged").
   run_options.stop_on_divergence = run_options.stop_on_failure;
@@ -135,8 +206,13 @@ int Run(const EffectRegistry& registry) {
     const auto now = std::chrono::steady_clock::now();
     if (FLAGS_progress && std::chrono::duration<double>(now - start).count() > 3.0 &&
         std::chrono::duration<double>(now - last_progress).count() > 1.0) {
-      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  iterations %d  residual %.2e   ", r.step,
-                   sim.steps(), r.time, r.iterations, r.residual);
+      if (run_options.adaptive) {
+        std::fprintf(stderr, "\rstep %d  t = %.4g/%.4g s  dt %.3g s  iterations %d   ", r.step,
+                     r.time, run_options.adaptive_options.t_end, r.time_step, r.iterations);
+      } else {
+        std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  iterations %d  residual %.2e   ", r.step,
+                     sim.steps(), r.time, r.iterations, r.residual);
+      }
       last_progress = now;
       progress_shown = true;
     }
@@ -154,6 +230,16 @@ int Run(const EffectRegistry& registry) {
               std::to_string(run.steps_planned) + " steps";
   }
   if (run.diverged()) ending += ", diverged at step " + std::to_string(run.diverged_at);
+  if (run.adaptive) {
+    char text[160];
+    std::snprintf(
+        text, sizeof(text), "; adaptive: %d rejected, dt %.3g to %.3g s%s", run.rejected,
+        run.min_time_step, run.max_time_step,
+        run.over_budget > 0
+            ? (", " + std::to_string(run.over_budget) + " over budget at the smallest dt").c_str()
+            : "");
+    ending += text;
+  }
   std::printf("done: %d steps, %d failed, %d substepped, %.2f iterations/step, %.3f ms/step%s\n",
               run.steps_done, run.failed, run.substepped, run.iterations_per_step(),
               run.ms_per_step(), ending.c_str());

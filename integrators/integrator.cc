@@ -1,5 +1,6 @@
 #include "integrators/integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -12,6 +13,17 @@
 #include "integrators/symplectic_euler.h"
 
 namespace ipstep {
+
+double Integrator::LocalError(const State& before, const State& after, double h) const {
+  const int dim = after.dimension;
+  double worst = 0.0;
+  for (int i = 0; i < after.num_nodes(); ++i) {
+    if (!after.is_free(i)) continue;
+    worst =
+        std::max(worst, (after.v.segment(dim * i, dim) - before.v.segment(dim * i, dim)).norm());
+  }
+  return 0.5 * h * worst;
+}
 
 void Integrator::Advance(const Eigen::VectorXd&, double, State*) const {
   throw std::logic_error(name() + " is not an explicit integrator");

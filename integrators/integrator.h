@@ -54,6 +54,20 @@ class Integrator {
     Update(x_next, h, state);
   }
 
+  // Error control (adaptive steps, sim/step_size_controller.h). The order p of
+  // the global position error (~ h^p); 0: no time-discretisation error to
+  // control (quasi-static).
+  virtual int order() const { return 1; }
+  // An estimate of the position error [m] that the step of h from `before` to
+  // `after` made (largest over free nodes). This default, for the first-order
+  // schemes (backward and symplectic Euler, x_{n+1} = x_n + h v_{n+1}), is the
+  // distance to the trapezoidal rule's positions with the same velocities,
+  //   e = h/2 |v_{n+1} - v_n|,
+  // the leading term of the local error h^2/2 |a| (an embedded pair: no extra
+  // solve). Contact forces are in it: a body resting on an obstacle has e = 0,
+  // an impact raises it (sim/step_size_controller.h treats that as an event).
+  virtual double LocalError(const State& before, const State& after, double h) const;
+
   // Explicit integrators only: advances `state` by h given the forces
   // f(x_n, v_n) (including gravity).
   virtual void Advance(const Eigen::VectorXd& forces, double h, State* state) const;

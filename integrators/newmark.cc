@@ -1,5 +1,8 @@
 #include "integrators/newmark.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace ipstep {
 
 void Newmark::SetWeights(double h, StepContext* c) const {
@@ -49,6 +52,17 @@ void Newmark::UpdateWithImpulses(const Eigen::VectorXd& x_next,
   s->v += h * ((1.0 - gamma_) * s->a + gamma_ * a_next) + 2.0 * beta_ * h * impulse_acceleration;
   s->a = a_next;
   s->x = x_next;
+}
+
+double Newmark::LocalError(const State& before, const State& after, double h) const {
+  const int dim = after.dimension;
+  double worst = 0.0;
+  for (int i = 0; i < after.num_nodes(); ++i) {
+    if (!after.is_free(i)) continue;
+    worst =
+        std::max(worst, (after.a.segment(dim * i, dim) - before.a.segment(dim * i, dim)).norm());
+  }
+  return h * h * (std::abs(beta_ - 1.0 / 6.0) + std::abs(gamma_ - 0.5)) * worst;
 }
 
 }  // namespace ipstep

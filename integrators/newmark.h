@@ -66,6 +66,15 @@ class Newmark : public Integrator {
   void UpdateWithImpulses(const Eigen::VectorXd& x_next, const Eigen::VectorXd& impulsive_forces,
                           double h, State* state) const override;
 
+  // Second order for gamma = 1/2, first otherwise.
+  int order() const override { return gamma_ == 0.5 ? 2 : 1; }
+  // The local error's leading term h^2 (|beta - 1/6| + |gamma - 1/2|) |a_{n+1} - a_n|
+  // (Zienkiewicz and Xie, 1991, for gamma = 1/2: the step's positions against
+  // a cubic through the same accelerations) with the smooth accelerations the
+  // state keeps: contact impulses are not in them (UpdateWithImpulses), the
+  // controller budgets an impact's timing separately.
+  double LocalError(const State& before, const State& after, double h) const override;
+
   static constexpr double kMinBeta = 1e-3;
   static constexpr double kMaxBeta = 1.0;
   static constexpr double kMinGamma = 0.5;

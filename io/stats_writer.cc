@@ -21,7 +21,8 @@ StatsWriter::StatsWriter(const std::string& path, const std::string& output,
                          const std::vector<std::string>& diagnostic_names)
     : out_(OpenForWriting(path, output)) {
   out_ << "step,time,iterations,evaluations,converged,status,wall_seconds,kinetic_energy,"
-          "potential_energy,total_energy,residual,substeps,energy_growth";
+          "potential_energy,total_energy,residual,substeps,energy_growth,time_step,"
+          "error_estimate,rejected";
   for (const std::string& name : diagnostic_names) out_ << ',' << name;
   out_ << '\n';
 }
@@ -30,7 +31,9 @@ void StatsWriter::Write(const StepReport& r) {
   out_ << r.step << ',' << r.time << ',' << r.iterations << ',' << r.evaluations << ','
        << (r.converged ? 1 : 0) << ",\"" << r.status << "\"," << r.wall_seconds << ','
        << r.energies.kinetic << ',' << r.energies.potential << ',' << r.energies.total() << ','
-       << r.residual << ',' << r.substeps << ',' << r.energy_growth;
+       << r.residual << ',' << r.substeps << ',' << r.energy_growth << ',' << r.time_step << ',';
+  if (std::isfinite(r.error_estimate)) out_ << r.error_estimate;
+  out_ << ',' << r.rejected;
   for (double value : r.diagnostics) {
     out_ << ',';
     if (std::isfinite(value)) out_ << value;

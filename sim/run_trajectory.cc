@@ -5,9 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glog/logging.h>
+
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "sim/divergence.h"
+#include "sim/step_size_controller.h"
 
 namespace ipstep {
 namespace {
@@ -36,9 +39,205 @@ const char* RunTerminationName(RunTermination termination) {
       return "diverged";
     case RunTermination::kTimeout:
       return "timeout";
+    case RunTermination::kStepLimit:
+      return "step limit";
   }
   return "?";
 }
+
+namespace {
+
+// The bookkeeping of the steps a run takes, fixed or adaptive: counts, the
+// divergence rule, the callbacks and whether to stop.
+class StepRecorder {
+ public:
+  StepRecorder(Simulation* sim, const RunOptions& options, double t_end, RunSummary* run)
+      : sim_(sim), options_(options), rule_(*sim, t_end), run_(run), start_(Clock::now()) {
+    run_->initial_energies = sim->Energies();
+    run_->final_energies = run_->initial_energies;
+    run_->energy_scale = rule_.EnergyScale(0.0);
+  }
+
+  // Called before the step's first attempt.
+  void Begin(int step) {
+    if (options_.before_step) options_.before_step(step);
+  }
+
+  // Records an accepted step (the k-th of this run); true if the run stops.
+  bool Record(int step, StepReport report, bool more_to_come) {
+    RunSummary& run = *run_;
+    ++run.steps_done;
+    run.iterations += report.iterations;
+    run.evaluations += report.evaluations;
+    run.max_step_iterations = std::max(run.max_step_iterations, report.iterations);
+    run.worst_residual = std::max(run.worst_residual, report.residual);
+    run.step_seconds += report.wall_seconds;
+    run.final_energies = report.energies;
+    run.min_time_step =
+        run.steps_done == 1 ? report.time_step : std::min(run.min_time_step, report.time_step);
+    run.max_time_step = std::max(run.max_time_step, report.time_step);
+    std::string divergence = rule_.Check(*sim_, report);
+    if (divergence.empty() && run.diverged()) {
+      divergence = "after the divergence at step " + std::to_string(run.diverged_at);
+    }
+    if (!divergence.empty()) {
+      report.converged = false;
+      report.status = "diverged: " + divergence;
+      if (!run.diverged()) {
+        run.diverged_at = step;
+        run.divergence = divergence;
+      }
+    } else {
+      run.max_energy_drift =
+          std::max(run.max_energy_drift, rule_.Drift(report.time, report.energies.total()));
+    }
+    if (report.converged && report.substeps > 1) ++run.substepped;
+    if (!report.converged) {
+      ++run.failed;
+      if (run.first_failed_step == 0) {
+        run.first_failed_step = step;
+        run.first_failure = report.status;
+      }
+    }
+    if (options_.after_step) options_.after_step(report);
+    if (run.diverged_at == step && options_.stop_on_divergence) {
+      run.termination = RunTermination::kDiverged;
+      return true;
+    }
+    if (!report.converged && options_.stop_on_failure) {
+      run.termination = run.diverged() ? RunTermination::kDiverged : RunTermination::kStepFailed;
+      return true;
+    }
+    if (options_.max_wall_seconds > 0.0 && more_to_come &&
+        Since(start_) > options_.max_wall_seconds) {
+      run.termination = RunTermination::kTimeout;
+      return true;
+    }
+    return false;
+  }
+
+  void Finish() {
+    RunSummary& run = *run_;
+    run.wall_seconds = Since(start_);
+    run.energy_scale = rule_.EnergyScale(sim_->state().time - rule_.start_time());
+    switch (run.termination) {
+      case RunTermination::kCompleted:
+        run.message = "completed " + std::to_string(run.steps_done) + " steps";
+        break;
+      case RunTermination::kStepFailed:
+        run.message =
+            "step " + std::to_string(run.first_failed_step) + " failed: " + run.first_failure;
+        break;
+      case RunTermination::kDiverged:
+        run.message = "diverged at step " + std::to_string(run.diverged_at) + ": " + run.divergence;
+        break;
+      case RunTermination::kTimeout:
+        run.message = Printf("timeout after %d steps (%.3g s)", run.steps_done, run.wall_seconds);
+        break;
+      case RunTermination::kStepLimit:
+        run.message = "stopped after " + std::to_string(run.steps_done) +
+                      " steps, the most a run takes, before the end time";
+        break;
+    }
+  }
+
+ private:
+  Simulation* sim_;
+  const RunOptions& options_;
+  const DivergenceRule rule_;
+  RunSummary* run_;
+  Clock::time_point start_;
+};
+
+void RunFixed(Simulation& sim, RunSummary* run, StepRecorder* recorder) {
+  for (int step = 1; step <= run->steps_planned; ++step) {
+    recorder->Begin(step);
+    if (recorder->Record(step, sim.Step(), step < run->steps_planned)) return;
+  }
+}
+
+// Error-controlled steps (sim/step_size_controller.h) to t_end.
+void RunAdaptive(Simulation& sim, const AdaptiveOptions& adaptive, RunSummary* run,
+                 StepRecorder* recorder) {
+  const int order = sim.integrator().order();
+  StepSizeController controller(adaptive, order);
+  const double t_start = sim.state().time;
+  const double t_stop = t_start + adaptive.t_end;
+  double h = adaptive.initial_time_step > 0.0 ? adaptive.initial_time_step : sim.time_step();
+  h = std::clamp(h, controller.min_time_step(), controller.max_time_step());
+  for (int step = 1;; ++step) {
+    const double left = t_stop - sim.state().time;
+    if (left <= 1e-12 * adaptive.t_end) return;
+    if (step > limits::kMaxSteps) {
+      run->termination = RunTermination::kStepLimit;
+      return;
+    }
+    recorder->Begin(step);
+    const Simulation::Checkpoint start = sim.Save();
+    Eigen::VectorXd start_forces;
+    const bool impulsive = sim.ImpulsiveForces(start.state.x, &start_forces);
+    int rejected = 0;
+    double rejected_seconds = 0.0;
+    long rejected_iterations = 0, rejected_evaluations = 0;
+    for (;;) {
+      // The last step lands on t_stop (a sliver under a tenth of h is merged in).
+      double h_try = std::min(h, left);
+      if (left - h_try < 0.1 * h_try) h_try = left;
+      StepReport report = sim.Step(h_try, /*retry_as_substeps=*/false);
+      StepSizeController::Decision decision;
+      if (report.converged) {
+        // The velocity change of the contact forces' change over the step.
+        Eigen::VectorXd impulse_dv, end_forces;
+        double impact_error = 0.0, contact_error = 0.0;
+        if (impulsive && sim.ImpulsiveForces(sim.state().x, &end_forces)) {
+          const State& s = sim.state();
+          const int dim = s.dimension;
+          impulse_dv = Eigen::VectorXd::Zero(s.num_dofs());
+          for (int i = 0; i < s.num_nodes(); ++i) {
+            if (!s.is_free(i)) continue;
+            impulse_dv.segment(dim * i, dim) =
+                (h_try / s.mass[i]) *
+                (end_forces.segment(dim * i, dim) - start_forces.segment(dim * i, dim));
+            impact_error =
+                std::max(impact_error, 0.5 * h_try * impulse_dv.segment(dim * i, dim).norm());
+            contact_error = std::max(contact_error, 0.5 * h_try * h_try / s.mass[i] *
+                                                        end_forces.segment(dim * i, dim).norm());
+          }
+        }
+        const double error = sim.integrator().LocalError(start.state, sim.state(), h_try);
+        decision = controller.Judge(h_try, error, impact_error, contact_error);
+        report.error_estimate = std::max(error, impact_error);
+        VLOG(1) << "adaptive: t=" << start.state.time << " h=" << h_try << " error=" << error
+                << " impact=" << impact_error << " contact=" << contact_error
+                << (decision.accept ? " accepted" : " rejected")
+                << ", next h=" << decision.next_time_step;
+        if (decision.accept && decision.over_budget) ++run->over_budget;  // at the smallest step
+      } else {
+        decision = controller.Failed(h_try);
+      }
+      if (decision.accept) {
+        report.rejected = rejected;
+        report.iterations += static_cast<int>(rejected_iterations);
+        report.evaluations += static_cast<int>(rejected_evaluations);
+        report.wall_seconds += rejected_seconds;
+        run->rejected += rejected;
+        h = decision.next_time_step;
+        if (recorder->Record(step, report, sim.state().time < t_stop - 1e-12 * adaptive.t_end)) {
+          return;
+        }
+        break;
+      }
+      ++rejected;
+      rejected_seconds += report.wall_seconds;
+      rejected_iterations += report.iterations;
+      rejected_evaluations += report.evaluations;
+      sim.Restore(start);
+      h = decision.next_time_step;
+    }
+  }
+}
+
+}  // namespace
 
 RunSummary RunTrajectory(Simulation& sim, const RunOptions& options) {
   const int remaining = std::max(0, sim.steps() - sim.steps_taken());
@@ -53,77 +252,28 @@ RunSummary RunTrajectory(Simulation& sim, const RunOptions& options) {
                      "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s"));
   }
   RunSummary run;
+  if (options.adaptive) {
+    ValidateAdaptiveOptions(options.adaptive_options);
+    if (options.steps != -1) {
+      throw InputError("options", "RunOptions.steps",
+                       "an adaptive run's steps follow from its error tolerance: leave it -1");
+    }
+    if (sim.integrator().order() < 1) {
+      throw InputError("options", "RunOptions.adaptive",
+                       sim.integrator().name() +
+                           " has no time-discretisation error to control; adaptive steps need "
+                           "a dynamic integrator");
+    }
+    run.adaptive = true;
+    StepRecorder recorder(&sim, options, options.adaptive_options.t_end, &run);
+    RunAdaptive(sim, options.adaptive_options, &run, &recorder);
+    recorder.Finish();
+    return run;
+  }
   run.steps_planned = options.steps >= 0 ? options.steps : remaining;
-  const DivergenceRule rule(sim, run.steps_planned * sim.time_step());
-  run.initial_energies = sim.Energies();
-  run.final_energies = run.initial_energies;
-  run.energy_scale = rule.EnergyScale(0.0);
-  const auto start = Clock::now();
-  for (int step = 1; step <= run.steps_planned; ++step) {
-    if (options.before_step) options.before_step(step);
-    StepReport report = sim.Step();
-    ++run.steps_done;
-    run.iterations += report.iterations;
-    run.evaluations += report.evaluations;
-    run.max_step_iterations = std::max(run.max_step_iterations, report.iterations);
-    run.worst_residual = std::max(run.worst_residual, report.residual);
-    run.step_seconds += report.wall_seconds;
-    run.final_energies = report.energies;
-    std::string divergence = rule.Check(sim, report);
-    if (divergence.empty() && run.diverged()) {
-      divergence = "after the divergence at step " + std::to_string(run.diverged_at);
-    }
-    if (!divergence.empty()) {
-      report.converged = false;
-      report.status = "diverged: " + divergence;
-      if (!run.diverged()) {
-        run.diverged_at = step;
-        run.divergence = divergence;
-      }
-    } else {
-      run.max_energy_drift =
-          std::max(run.max_energy_drift, rule.Drift(report.time, report.energies.total()));
-    }
-    if (report.converged && report.substeps > 1) ++run.substepped;
-    if (!report.converged) {
-      ++run.failed;
-      if (run.first_failed_step == 0) {
-        run.first_failed_step = step;
-        run.first_failure = report.status;
-      }
-    }
-    if (options.after_step) options.after_step(report);
-    if (run.diverged_at == step && options.stop_on_divergence) {
-      run.termination = RunTermination::kDiverged;
-      break;
-    }
-    if (!report.converged && options.stop_on_failure) {
-      run.termination = run.diverged() ? RunTermination::kDiverged : RunTermination::kStepFailed;
-      break;
-    }
-    if (options.max_wall_seconds > 0.0 && step < run.steps_planned &&
-        Since(start) > options.max_wall_seconds) {
-      run.termination = RunTermination::kTimeout;
-      break;
-    }
-  }
-  run.wall_seconds = Since(start);
-  run.energy_scale = rule.EnergyScale(sim.state().time - rule.start_time());
-  switch (run.termination) {
-    case RunTermination::kCompleted:
-      run.message = "completed " + std::to_string(run.steps_done) + " steps";
-      break;
-    case RunTermination::kStepFailed:
-      run.message =
-          "step " + std::to_string(run.first_failed_step) + " failed: " + run.first_failure;
-      break;
-    case RunTermination::kDiverged:
-      run.message = "diverged at step " + std::to_string(run.diverged_at) + ": " + run.divergence;
-      break;
-    case RunTermination::kTimeout:
-      run.message = Printf("timeout after %d steps (%.3g s)", run.steps_done, run.wall_seconds);
-      break;
-  }
+  StepRecorder recorder(&sim, options, run.steps_planned * sim.time_step(), &run);
+  RunFixed(sim, &run, &recorder);
+  recorder.Finish();
   return run;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sim/simulation.h"
+#include "sim/step_size_controller.h"
 
 namespace ipstep {
 
@@ -31,6 +32,13 @@ struct RunOptions {
   // its report (status "diverged: ..." once the run diverged). May be empty.
   std::function<void(int step)> before_step;
   std::function<void(const StepReport& report)> after_step;
+  // Error-controlled steps to adaptive_options.t_end (sim/step_size_controller.h)
+  // instead of the simulation's fixed ones; `steps` must be -1. A rejected
+  // attempt goes back to the step's start (Simulation::Restore): only accepted
+  // steps reach after_step, carrying their h, error estimate and rejections.
+  // The simulation's own substeps are not used (the controller retries).
+  bool adaptive = false;
+  AdaptiveOptions adaptive_options;
 };
 
 enum class RunTermination {
@@ -38,14 +46,22 @@ enum class RunTermination {
   kStepFailed,  // stopped at a failed step (RunOptions::stop_on_failure)
   kDiverged,    // stopped at a diverged step (RunOptions::stop_on_divergence)
   kTimeout,     // stopped by RunOptions::max_wall_seconds
+  kStepLimit,   // an adaptive run took the most steps a run takes (10^7) before its end
 };
 const char* RunTerminationName(RunTermination termination);  // completed, step failed, ...
 
 struct RunSummary {
-  int steps_planned = 0;
+  bool adaptive = false;
+  int steps_planned = 0;  // 0 for an adaptive run (its steps follow from the error)
   int steps_done = 0;
   int failed = 0;      // steps not converged, also as substeps (diverged steps included)
   int substepped = 0;  // steps that converged only as substeps
+  // Adaptive runs: attempts rejected (error over budget or a failed solve) and
+  // steps taken at the smallest step with the error still over its budget.
+  int rejected = 0;
+  int over_budget = 0;
+  double min_time_step = 0.0;  // [s] over the steps taken
+  double max_time_step = 0.0;
   long iterations = 0;
   long evaluations = 0;
   int max_step_iterations = 0;

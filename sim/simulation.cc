@@ -49,6 +49,11 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
     }
     steps_ = static_cast<int>(std::min(steps, static_cast<double>(limits::kMaxSteps) + 1.0));
   }
+  if (!(options.accept_residual >= 0.0 && std::isfinite(options.accept_residual))) {
+    throw InputError(
+        "options", "SimulationOptions.accept_residual",
+        "must be a finite number >= 0 [m/s], got " + limits::FormatLimit(options.accept_residual));
+  }
   if (steps_ > limits::kMaxSteps) {
     throw InputError(
         "options", "SimulationOptions.steps",
@@ -174,6 +179,18 @@ void Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
     report->iterations += result.iterations;
     report->evaluations += result.evaluations;
     report->residual = result.residual;
+    if (!result.converged && options_.accept_residual > 0.0 &&
+        result.residual <= options_.accept_residual &&
+        (result.status.rfind("stalled", 0) == 0 ||
+         result.status.rfind("iteration limit", 0) == 0)) {
+      // Below the error budget (an adaptive run): accepted rather than making
+      // the step smaller, which would not make the solve any more accurate.
+      char text[120];
+      std::snprintf(text, sizeof(text), "converged within the error budget: %.3g m/s (",
+                    result.residual);
+      report->converged = true;
+      report->status = text + result.status + ")";
+    }
     if (solve >= kMaxRefreshes) break;
     bool refreshed = false;
     for (const auto& filter : potential_->step_filters())
@@ -236,17 +253,36 @@ EnergyReport Simulation::Energies() const {
   return report;
 }
 
-StepReport Simulation::Step() {
+StepReport Simulation::Step() { return Step(time_step_); }
+
+Simulation::Checkpoint Simulation::Save() const {
+  return Checkpoint{state_, run_energy_.growth, run_energy_.scale, run_energy_.floor, steps_taken_};
+}
+
+void Simulation::Restore(const Checkpoint& checkpoint) {
+  state_ = checkpoint.state;
+  run_energy_ = {checkpoint.energy_growth, checkpoint.energy_scale, checkpoint.energy_floor};
+  steps_taken_ = checkpoint.steps_taken;
+}
+
+StepReport Simulation::Step(double h, bool retry_as_substeps) {
   const auto start = std::chrono::steady_clock::now();
-  const double h = time_step_;
+  if (!(h >= limits::kMinTimeStep && h <= limits::kMaxTimeStep)) {
+    throw InputError("options", "SimulationOptions.time_step",
+                     "a step of " + limits::FormatLimit(h) + " s is outside " +
+                         limits::RangeText(limits::kMinTimeStep, limits::kMaxTimeStep, "s"));
+  }
+  if (potential_->context().time_step != h) integrator_->SetWeights(h, &potential_->context());
   StepReport report;
   report.step = ++steps_taken_;
+  report.time_step = h;
   const State saved = state_;
   const RunEnergyBalance saved_energy = run_energy_;
   Advance(h, &report);
-  if (!report.converged && options_.max_substeps > 1) report.retry_reason = report.status;
+  const int max_substeps = retry_as_substeps ? options_.max_substeps : 1;
+  if (!report.converged && max_substeps > 1) report.retry_reason = report.status;
   // Retry a failed step as 2, 4, ... substeps from the same start.
-  for (int substeps = 2; !report.converged && substeps <= options_.max_substeps; substeps *= 2) {
+  for (int substeps = 2; !report.converged && substeps <= max_substeps; substeps *= 2) {
     state_ = saved;
     run_energy_ = saved_energy;
     const double h_sub = h / substeps;

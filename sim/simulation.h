@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -35,6 +36,11 @@ struct SimulationOptions {
   // A failed step is retried from its start as 2, 4, ... substeps, up to this
   // many (1: no retry); the run then continues at the scene's step.
   int max_substeps = 1;
+  // A step whose optimiser stops above its tolerance (stalled, iteration
+  // limit) with a stopping measure at most this [m/s] is accepted as
+  // converged (status "converged within the error budget: ..."); 0: never.
+  // Adaptive runs set it from their error budget (sim/step_size_controller.h).
+  double accept_residual = 0.0;
   // The effects the scene's "effects" are looked up in; null: DefaultEffects()
   // (sim/default_effects.h). Must outlive the simulation's construction.
   const EffectRegistry* effects = nullptr;
@@ -48,6 +54,7 @@ struct SimulationOptions {
 struct StepReport {
   int step = 0;
   double time = 0.0;
+  double time_step = 0.0;  // h of this step [s]
   bool converged = true;
   std::string status = "converged";
   int iterations = 0;
@@ -57,6 +64,11 @@ struct StepReport {
   int substeps = 1;            // 1, or the substeps of a retried step
   std::string retry_reason;    // a retried step: the status of its first attempt
   double energy_growth = 0.0;  // E_{n+1} - E_n - W [J] (sim/energy_balance.h); 0 unchecked
+  // Adaptive runs (sim/run_trajectory.h): the integrator's local error estimate
+  // [m] and the attempts rejected before this step was accepted; NaN and 0
+  // otherwise.
+  double error_estimate = std::numeric_limits<double>::quiet_NaN();
+  int rejected = 0;
   EnergyReport energies;
   std::vector<double> diagnostics;  // values of Simulation::DiagnosticNames()
 };
@@ -68,7 +80,22 @@ class Simulation {
   Simulation(const Simulation&) = delete;  // terms and solvers point into it
   Simulation& operator=(const Simulation&) = delete;
 
+  // One step of time_step(), retried as substeps (SimulationOptions::max_substeps).
   StepReport Step();
+  // One step of h [s] (in the range of SimulationOptions::time_step); without
+  // `retry_as_substeps` a failed step is not retried (an adaptive run's
+  // controller retries it).
+  StepReport Step(double h, bool retry_as_substeps = true);
+
+  // The state a step starts from, to go back to (a rejected adaptive step):
+  // the state, the run's energy balance and the step count.
+  struct Checkpoint {
+    State state;
+    double energy_growth = 0.0, energy_scale = 0.0, energy_floor = 0.0;
+    int steps_taken = 0;
+  };
+  Checkpoint Save() const;
+  void Restore(const Checkpoint& checkpoint);
 
   const Scene& scene() const { return scene_; }
   const State& state() const { return state_; }
@@ -89,6 +116,11 @@ class Simulation {
       std::function<std::unique_ptr<StepSolver>(IncrementalPotential*, const State*)>;
   void ReplaceStepSolver(const StepSolverFactory& factory);
 
+  // Forces [N] of the impulsive terms (Term::impulsive: contact barrier,
+  // friction) at x with the terms as they are, -grad E_impulsive / w_U; false
+  // when there are none (or they cannot be evaluated).
+  bool ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const;
+
   // Extra per-step columns contributed by step filters (e.g. contact).
   std::vector<std::string> DiagnosticNames() const;
   void set_iteration_sink(IterationSink sink);
@@ -106,9 +138,6 @@ class Simulation {
   // One step of h from the state (Step: h, or a substep of it).
   void Advance(double h, StepReport* report);
   void SolveStep(double h, Eigen::VectorXd* x, StepReport* report);
-  // Forces of the impulsive terms (Term::impulsive) at x, -grad E_impulsive / w_U;
-  // false when there are none (or they cannot be evaluated).
-  bool ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const;
 
   Scene scene_;
   SimulationOptions options_;

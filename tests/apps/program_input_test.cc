@@ -358,8 +358,8 @@ TEST_F(ProgramInput, HelpShowsTheProgramsFlagsGrouped) {
     const Outcome o = RunIpstep(help);
     ASSERT_EQ(o.exit_code, 0) << o.output;
     size_t last = 0;
-    for (const char* group : {"\nScene:", "\nIntegrator and failed steps:", "\nOptimiser:",
-                              "\nContact (", "\nOutput:"}) {
+    for (const char* group : {"\nScene:", "\nIntegrator, failed steps and adaptive steps:",
+                              "\nOptimiser:", "\nContact (", "\nOutput:"}) {
       const size_t at = o.output.find(group);
       EXPECT_NE(at, std::string::npos) << help << ": " << group << "\n" << o.output;
       EXPECT_GT(at, last) << help << ": " << group << " out of order";
@@ -590,6 +590,33 @@ TEST_F(ProgramInput, EndTimeSetsTheSteps) {
   ExpectInputError("--scene=oscillator --dt=0.1 --t_end=0.55", "--t_end", "a step that fits: ");
   ExpectInputError("--scene=oscillator --steps=3 --t_end=0.5", "--t_end", "not both");
   ExpectInputError("--scene=oscillator --t_end=-1", "--t_end", "");
+}
+
+// --adaptive: the steps follow from --error_tolerance; its flags are errors
+// without it, and --steps and --max_substeps are errors with it.
+TEST_F(ProgramInput, AdaptiveRunsAndItsFlagsFollowTheContract) {
+  const std::string stats = (dir_ / "adaptive.csv").string();
+  const Outcome o = RunIpstep(
+      "--scene=oscillator --integrator=newmark --adaptive "
+      "--error_tolerance=1e-4 --t_end=5 --stats=" +
+      stats);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("adaptive steps to t = 5 s for an error of 0.0001 m"), std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("; adaptive: "), std::string::npos) << o.output;
+  std::ifstream in(stats);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_NE(header.find(",time_step,error_estimate,rejected"), std::string::npos) << header;
+  ExpectInputError("--scene=oscillator --error_tolerance=1e-4", "--error_tolerance",
+                   "with --adaptive only");
+  ExpectInputError("--scene=oscillator --max_dt=0.1", "--max_dt", "with --adaptive only");
+  ExpectInputError("--scene=oscillator --adaptive --steps=10", "--steps", "--t_end");
+  ExpectInputError("--scene=oscillator --adaptive --max_substeps=4", "--max_substeps", "");
+  ExpectInputError("--scene=oscillator --adaptive --error_tolerance=0", "--error_tolerance", "");
+  ExpectInputError("--scene=oscillator --adaptive --min_dt=0.1 --max_dt=0.01", "--min_dt", "");
+  ExpectInputError("--scene=oscillator --adaptive --integrator=quasi_static", "--adaptive",
+                   "dynamic integrator");
 }
 
 TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {

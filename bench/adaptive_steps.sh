@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Adaptive against fixed steps (docs/benchmarks.md "Adaptive steps"): for each
+# scene x integrator, fixed-h runs over a range of h and --adaptive runs over a
+# range of --error_tolerance, each to the same end time; the final-position
+# error (max over nodes) against a fixed-step run at h_ref, and the wall time
+# of the run (the ipstep process). One CSV row per run. The reference is the
+# exact solution for the oscillator, otherwise the trapezoidal rule (Newmark
+# 1/4, 1/2; second order) at REF_DT with a tight tolerance for every
+# integrator. Fixed runs keep the default --tolerance (1e-5 m/s), as a user
+# who only changes --dt would; adaptive runs tie it to the error budget.
+#   bench/adaptive_steps.sh BUILD_DIR OUT.csv
+# Environment: SCENES ("oscillator:10 spring_pendulum:2 drop:1", scene:t_end),
+# INTEGRATORS ("newmark backward_euler"), REF_DT (1e-5), TOLERANCES
+# ("1e-2 1e-3 1e-4 1e-5"; backward Euler stops at 1e-4: first order, 1e-5
+# takes ~10^6-10^7 steps), MAX_SECONDS per run (120; a run cut there is a row
+# with failed = timeout).
+set -euo pipefail
+build=${1:?build directory}
+out=${2:?output CSV}
+ipstep="$build/apps/ipstep"
+scenes=${SCENES:-"oscillator:10 spring_pendulum:2 drop:1"}
+integrators=${INTEGRATORS:-"newmark backward_euler"}
+ref_dt=${REF_DT:-1e-5}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$(dirname "$out")"
+echo "scene,integrator,mode,dt_or_tolerance,steps,failed,rejected,wall_s,position_error" > "$out"
+error_of() {  # max node distance between two --positions files
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import sys
+def load(path):
+    rows = [line.strip().split(",") for line in open(path) if line[:1].isdigit()]
+    return {int(r[0]): [float(v) for v in r[1:]] for r in rows}
+a, b = load(sys.argv[1]), load(sys.argv[2])
+print("%.6g" % max(sum((p - q) ** 2 for p, q in zip(a[k], b[k])) ** 0.5 for k in a))
+PY
+}
+run() {  # label args...: appends a row
+  local scene=$1 integrator=$2 mode=$3 value=$4; shift 4
+  local start end log
+  start=$(date +%s.%N)
+  log=$(timeout "${MAX_SECONDS:-120}" "$ipstep" --scene="$scene" --integrator="$integrator" --num_threads=1 --progress=false \
+        --on_failure=continue --positions="$work/run.csv" "$@" 2>&1 || true)
+  end=$(date +%s.%N)
+  local done_line steps failed rejected
+  done_line=$(echo "$log" | grep '^done:' || echo "done: 0 steps, timeout failed")
+  steps=$(echo "$done_line" | sed 's/done: \([0-9]*\) steps.*/\1/')
+  failed=$(echo "$done_line" | sed 's/.* \([0-9a-z]*\) failed.*/\1/')
+  rejected=$(echo "$done_line" | grep -o '[0-9]* rejected' | cut -d' ' -f1 || true)
+  echo "$scene,$integrator,$mode,$value,$steps,$failed,${rejected:-0},$(echo "$end - $start" | bc)," \
+       "$(error_of "$work/run.csv" "$work/ref_${scene}.csv")" | tr -d ' ' >> "$out"
+  rm -f "$work/run.csv"
+}
+for entry in $scenes; do
+  scene=${entry%%:*}; t_end=${entry##*:}
+  if [ "$scene" = oscillator ]; then  # the exact solution x = 1 + 0.1 cos t
+    /usr/bin/python3 -c "import math; print('node,x,y'); print('0,0,0'); \
+print('1,%.17g,0' % (1 + 0.1 * math.cos($t_end)))" > "$work/ref_${scene}.csv"
+  else
+    "$ipstep" --scene="$scene" --integrator=newmark --dt="$ref_dt" --t_end="$t_end" \
+      --tolerance=1e-9 --num_threads=1 --progress=false --on_failure=continue \
+      --positions="$work/ref_${scene}.csv" > /dev/null 2>&1 || true
+  fi
+  for integrator in $integrators; do
+    for dt in 0.1 0.03 0.01 0.003 0.001 0.0003; do
+      steps=$(echo "$t_end / $dt" | bc)
+      [ "$steps" -ge 1 ] || continue
+      run "$scene" "$integrator" fixed "$dt" --dt="$(echo "scale=12; $t_end / $steps" | bc)" \
+        --t_end="$t_end"
+    done
+    for tolerance in ${TOLERANCES:-1e-2 1e-3 1e-4 1e-5}; do
+      if [ "$integrator" = backward_euler ] && [ "$tolerance" = 1e-5 ]; then continue; fi
+      run "$scene" "$integrator" adaptive "$tolerance" --adaptive --error_tolerance="$tolerance" \
+        --t_end="$t_end"
+    done
+    echo "adaptive_steps: $scene $integrator done" >&2
+  done
+done
+echo "wrote $out" >&2
