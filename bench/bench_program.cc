@@ -73,6 +73,10 @@ DEFINE_bool(errors, true,
             "Compute errors against the exact solution (oscillator) or a reference run");
 DEFINE_string(reference_optimizer, "projected_newton", "Optimiser spec of the reference runs");
 DEFINE_double(reference_tolerance, 1e-8, "Stopping tolerance of the reference runs [m/s], > 0");
+DEFINE_string(reference_cache, "",
+              "Folder the reference runs are kept in and read from, shared by the shards of a "
+              "sweep (one file per reference, keyed by scene, grid, method, dt, t_end, optimiser, "
+              "tolerance and commit); default: 'references' beside --output; 'none': no files");
 DEFINE_string(shard, "0/1", "i/N: run only configurations with index % N == i");
 DEFINE_string(output, "bench.csv", "CSV output (with --merge: the merged file)");
 DEFINE_string(merge, "",
@@ -475,6 +479,12 @@ int Run(const EffectRegistry& registry) {
   out << CsvHeader() << '\n' << std::flush;
 
   ReferenceCache references(FLAGS_reference_optimizer, FLAGS_reference_tolerance, &registry);
+  if (FLAGS_reference_cache != "none") {
+    references.set_directory(
+        FLAGS_reference_cache.empty()
+            ? (std::filesystem::path(FLAGS_output).parent_path() / "references").string()
+            : FLAGS_reference_cache);
+  }
   std::map<std::pair<std::string, int>, double> dt_min;
   for (const SceneSetup& s : setups) {
     dt_min[{s.scene, s.grid_size}] = *std::min_element(s.dts.begin(), s.dts.end());
@@ -537,6 +547,11 @@ int Run(const EffectRegistry& registry) {
       }
       finish(&rows[i]);
     }
+  }
+  if (FLAGS_errors) {
+    std::fprintf(stderr, "ipstep_bench: %d reference runs computed, the others read from %s\n",
+                 references.computed(),
+                 FLAGS_reference_cache == "none" ? "memory" : "the reference cache");
   }
   return 0;
 }

@@ -104,6 +104,13 @@ class ReferenceCache {
   // The reference integrator for runs of `integrator`: quasi_static for
   // quasi_static (a different problem), newmark (trapezoidal, order 2) otherwise.
   static std::string ReferenceIntegrator(const std::string& integrator);
+  // Keeps every reference also as a file in `directory` (created if needed)
+  // and reads it from there when another run of the same sweep (a shard, or a
+  // later sweep of the same build) computed it: one file per key (scene, grid,
+  // method, dt_min, t_end, optimiser, tolerance, commit), written to a
+  // temporary name and renamed, so shards on one host share them safely.
+  void set_directory(std::string directory) { directory_ = std::move(directory); }
+  int computed() const { return computed_; }  // references computed (not read)
   const ReferenceSolution& Get(const std::string& scene, int grid_size,
                                const std::string& integrator, double dt_min, double t_end);
 
@@ -111,6 +118,8 @@ class ReferenceCache {
   std::string optimizer_;
   double tolerance_;
   const EffectRegistry* effects_;
+  std::string directory_;
+  int computed_ = 0;
   std::map<std::tuple<std::string, int, std::string, double, double>, ReferenceSolution> cache_;
 };
 

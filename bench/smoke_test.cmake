@@ -12,6 +12,10 @@ foreach(shard 0 1)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "shard ${shard} failed (${rc}):\n${log}")
   endif()
+  # The second shard reads the references the first computed (bench/references/).
+  if(shard EQUAL 1 AND NOT log MATCHES "0 reference runs computed")
+    message(FATAL_ERROR "shard 1 should read its references from the cache:\n${log}")
+  endif()
 endforeach()
 # The merged file's folder does not exist yet: --output creates it.
 execute_process(COMMAND ${BENCH} --merge=${WORK_DIR}/shard*.csv --output=${WORK_DIR}/merged/all.csv

@@ -80,27 +80,29 @@ DivergenceRule::DivergenceRule(const Simulation& sim, double t_end) {
   diagonal_ = n > 0 ? (hi - lo).norm() : 0.0;
 }
 
-double DivergenceRule::EnergyScale(double t) const {
-  return stored_energy_ + weight_ * (diagonal_ + speed_ * t + 0.5 * gravity_ * t * t);
+double DivergenceRule::EnergyScale(double t, double work) const {
+  return stored_energy_ + std::abs(work) +
+         weight_ * (diagonal_ + speed_ * t + 0.5 * gravity_ * t * t);
 }
 
 double DivergenceRule::Reach(double t) const {
   return 0.5 * diagonal_ + speed_ * t + 0.5 * gravity_ * t * t;
 }
 
-double DivergenceRule::Drift(double time, double energy) const {
-  const double scale = EnergyScale(std::max(0.0, time - start_time_));
+double DivergenceRule::Drift(double time, double energy, double work) const {
+  const double scale = EnergyScale(std::max(0.0, time - start_time_), work);
   return scale > 0.0 ? std::abs(energy - initial_energy_) / scale : 0.0;
 }
 
-std::string DivergenceRule::Check(const Simulation& sim, const StepReport& report) const {
+std::string DivergenceRule::Check(const Simulation& sim, const StepReport& report,
+                                  double work) const {
   const State& s = sim.state();
   if (!s.x.allFinite()) return "a position is not finite";
   if (!s.v.allFinite()) return "a velocity is not finite";
   const double energy = report.energies.total();
   if (!std::isfinite(energy)) return "the energy is not finite";
   const double t = std::max(0.0, s.time - start_time_);
-  const double scale = EnergyScale(t);
+  const double scale = EnergyScale(t, work);
   if (scale > 0.0 && std::abs(energy - initial_energy_) > kEnergyFactor * scale) {
     char text[200];
     std::snprintf(text, sizeof(text),

@@ -10,11 +10,14 @@
 // initial energy's magnitude: |E_0| is round-off for a body at rest about the
 // origin (hanging_square: -5.7e-14 J) and 0 for a clamped rod at rest, and it
 // depends on where the origin is (gravity's -m g.x).
-//   E_s(t) = K_0 + |U_0 - U_g0| + K_p + M |g| (L + v_s t + |g| t^2 / 2)
+//   E_s(t) = K_0 + |U_0 - U_g0| + K_p + W(t) + M |g| (L + v_s t + |g| t^2 / 2)
 //   reach(t) = R + v_s t + |g| t^2 / 2
 // K_0: initial kinetic energy; U_0 - U_g0: the initial potential energy without
 // gravity's part (elastic, contact); K_p: the largest kinetic energy of the
-// prescribed (moving) nodes over the run, sampled; M: total mass; L and R: the
+// prescribed (moving) nodes over the run, sampled; W(t): the work the
+// prescribed motions did so far, summed in magnitude over the steps
+// (StepReport::prescribed_work, measured by the energy balance of variational
+// runs; a twisted bar stores 50 times its initial energy); M: total mass; L and R: the
 // diagonal and half diagonal of the box holding every node at the start and
 // every prescribed position over the run; v_s = max(initial speeds, prescribed
 // speeds, sqrt(2 (K_0 + |U_0 - U_g0| + K_p) / M)), the speed the scene's own
@@ -49,14 +52,16 @@ class DivergenceRule {
   // Empty if the state of `sim` after a step with `report` is physical,
   // otherwise why the run diverged (e.g. "energy 4.1e+12 J is 2.3e+07 energy
   // scales (1.8e+05 J) from the initial 0 J").
-  std::string Check(const Simulation& sim, const StepReport& report) const;
+  // `work`: W, the prescribed work so far [J].
+  std::string Check(const Simulation& sim, const StepReport& report, double work = 0.0) const;
 
-  // E_s(t) [J] and reach(t) [m] at time t [s] from the start.
-  double EnergyScale(double t) const;
+  // E_s(t) [J] (with the prescribed work so far `work`) and reach(t) [m] at
+  // time t [s] from the start.
+  double EnergyScale(double t, double work = 0.0) const;
   double Reach(double t) const;
   // |energy - E_0| / E_s(time - start) at simulated `time` [s]; 0 for a scale
   // of 0.
-  double Drift(double time, double energy) const;
+  double Drift(double time, double energy, double work = 0.0) const;
   double initial_energy() const { return initial_energy_; }
   double start_time() const { return start_time_; }
 

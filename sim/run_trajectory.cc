@@ -76,7 +76,8 @@ class StepRecorder {
     run.min_time_step =
         run.steps_done == 1 ? report.time_step : std::min(run.min_time_step, report.time_step);
     run.max_time_step = std::max(run.max_time_step, report.time_step);
-    std::string divergence = rule_.Check(*sim_, report);
+    if (std::isfinite(report.prescribed_work)) work_ += std::abs(report.prescribed_work);
+    std::string divergence = rule_.Check(*sim_, report, work_);
     if (divergence.empty() && run.diverged()) {
       divergence = "after the divergence at step " + std::to_string(run.diverged_at);
     }
@@ -89,7 +90,7 @@ class StepRecorder {
       }
     } else {
       run.max_energy_drift =
-          std::max(run.max_energy_drift, rule_.Drift(report.time, report.energies.total()));
+          std::max(run.max_energy_drift, rule_.Drift(report.time, report.energies.total(), work_));
     }
     if (report.converged && report.substeps > 1) ++run.substepped;
     if (!report.converged) {
@@ -119,7 +120,7 @@ class StepRecorder {
   void Finish() {
     RunSummary& run = *run_;
     run.wall_seconds = Since(start_);
-    run.energy_scale = rule_.EnergyScale(sim_->state().time - rule_.start_time());
+    run.energy_scale = rule_.EnergyScale(sim_->state().time - rule_.start_time(), work_);
     switch (run.termination) {
       case RunTermination::kCompleted:
         run.message = "completed " + std::to_string(run.steps_done) + " steps";
@@ -147,6 +148,7 @@ class StepRecorder {
   const DivergenceRule rule_;
   RunSummary* run_;
   Clock::time_point start_;
+  double work_ = 0.0;  // prescribed work so far, summed in magnitude [J]
 };
 
 void RunFixed(Simulation& sim, RunSummary* run, StepRecorder* recorder) {

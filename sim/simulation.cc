@@ -297,6 +297,7 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
       attempt.iterations += sub.iterations;
       attempt.evaluations += sub.evaluations;
       attempt.energy_growth += sub.energy_growth;
+      attempt.prescribed_work += sub.prescribed_work;
       attempt.energies = sub.energies;
     }
     integrator_->SetWeights(h, &potential_->context());
@@ -305,6 +306,7 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
     report.converged = attempt.converged;
     report.residual = attempt.residual;
     report.energy_growth = attempt.energy_growth;
+    report.prescribed_work = attempt.prescribed_work;
     report.energies = attempt.energies;
     report.substeps = substeps;
     report.status = attempt.converged
@@ -398,6 +400,7 @@ void Simulation::Advance(double h, StepReport* report) {
   const EnergyBalance balance =
       BalanceOf(energy_start, energy_end, state_, filter_work, options_.optimizer.tolerance / h);
   report->energy_growth = balance.growth();
+  report->prescribed_work = balance.work;
   VLOG(2) << "energy balance: " << balance.Describe() << " start " << balance.start << " end "
           << balance.end << " work " << balance.work << " floor " << balance.floor;
   // Per step, and over the run: energy created a little at a time, each step

@@ -60,10 +60,11 @@ struct StepReport {
   int iterations = 0;
   int evaluations = 0;
   double wall_seconds = 0.0;
-  double residual = 0.0;       // stopping measure [m/s]
-  int substeps = 1;            // 1, or the substeps of a retried step
-  std::string retry_reason;    // a retried step: the status of its first attempt
-  double energy_growth = 0.0;  // E_{n+1} - E_n - W [J] (sim/energy_balance.h); 0 unchecked
+  double residual = 0.0;         // stopping measure [m/s]
+  int substeps = 1;              // 1, or the substeps of a retried step
+  std::string retry_reason;      // a retried step: the status of its first attempt
+  double energy_growth = 0.0;    // E_{n+1} - E_n - W [J] (sim/energy_balance.h); 0 unchecked
+  double prescribed_work = 0.0;  // W [J]: work of prescribed motions (same); 0 unchecked
   // Adaptive runs (sim/run_trajectory.h): the integrator's local error estimate
   // [m] and the attempts rejected before this step was accepted; NaN and 0
   // otherwise.
