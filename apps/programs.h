@@ -25,11 +25,14 @@ namespace ipstep {
 int RunIpstep(int argc, char** argv);
 // ipstep_compare: every integrator x optimiser on one scene, as a table.
 int RunCompare(int argc, char** argv);
+// ipstep_tune: the cheapest configuration that reaches an error (apps/tune_program.cc).
+int RunTune(int argc, char** argv);
 
 // The same with the effects of `registry` (the overloads above pass
 // DefaultEffects(), sim/default_effects.h): scenes may list its effects and
 // are built with them.
 int RunIpstep(int argc, char** argv, const EffectRegistry& registry);
 int RunCompare(int argc, char** argv, const EffectRegistry& registry);
+int RunTune(int argc, char** argv, const EffectRegistry& registry);
 
 }  // namespace ipstep

@@ -9,7 +9,7 @@ get_property(ipstep_libraries GLOBAL PROPERTY IPSTEP_LIBRARIES)
 install(TARGETS ipstep ipstep_blas ${ipstep_libraries} ipstep_flags EXPORT ipstepTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS ipstep_app ipstep_compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS ipstep_app ipstep_compare ipstep_tune RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 if(TARGET ipstep_bench_lib)  # ipstep::bench (bench/bench_program.h: RunBench)
   install(TARGETS ipstep_bench_lib EXPORT ipstepTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(TARGETS ipstep_bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -1,5 +1,6 @@
 // The ipstep program on bad input: one clear error naming the file or flag and
 // key, exit code 2, never a crash or an abort. And the good path: outputs.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -617,6 +618,34 @@ TEST_F(ProgramInput, AdaptiveRunsAndItsFlagsFollowTheContract) {
   ExpectInputError("--scene=oscillator --adaptive --min_dt=0.1 --max_dt=0.01", "--min_dt", "");
   ExpectInputError("--scene=oscillator --adaptive --integrator=quasi_static", "--adaptive",
                    "dynamic integrator");
+}
+
+// ipstep_tune on the oscillator (exact solution): it recommends a run within
+// the target, and that command line, run, is within it.
+TEST_F(ProgramInput, TuneRecommendsARunThatReachesTheTarget) {
+  const Outcome o =
+      ipstep::testing::RunProgram(std::string(IPSTEP_TUNE_BINARY) +
+                                      " --scene=oscillator --target_error=1e-3 2>/dev/null; "
+                                      "exit $?",
+                                  "");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const size_t at = o.output.find("\n  ipstep ");
+  ASSERT_NE(at, std::string::npos) << o.output;
+  const std::string command = o.output.substr(at + 9, o.output.find('\n', at + 3) - at - 9);
+  const std::string positions = (dir_ / "tuned.csv").string();
+  const Outcome run = RunIpstep(command + " --positions=" + positions);
+  ASSERT_EQ(run.exit_code, 0) << command << "\n" << run.output;
+  std::ifstream in(positions);
+  std::string line;
+  std::getline(in, line);  // header
+  std::getline(in, line);  // node 0 (pinned)
+  std::getline(in, line);  // node 1
+  const double x = std::stod(line.substr(line.find(',') + 1));
+  EXPECT_LE(std::abs(x - (1.0 + 0.1 * std::cos(10.0))), 1e-3) << command;
+  const Outcome bad = ipstep::testing::RunProgram(
+      std::string(IPSTEP_TUNE_BINARY) + " --scene=oscillator --target_error=0", "");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--target_error"), std::string::npos) << bad.output;
 }
 
 TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {
