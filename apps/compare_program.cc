@@ -108,7 +108,10 @@ int Run(const EffectRegistry& registry) {
       OptimizerNames(), [](const std::string& name) { ParseOptimizer(name); });
 
   const double dt = base.time_step > 0.0 ? base.time_step : scene.time_step;
-  const int steps = base.steps >= 0 ? base.steps : scene.steps;
+  // --t_end: its steps (Simulation checks that they are whole).
+  const int steps = base.t_end > 0.0  ? static_cast<int>(std::llround(base.t_end / dt))
+                    : base.steps >= 0 ? base.steps
+                                      : scene.steps;
   const double t_end = dt * steps;
 
   ReferenceOptions reference_options;

@@ -169,7 +169,9 @@ void RunAdaptive(Simulation& sim, const AdaptiveOptions& adaptive, RunSummary* r
   h = std::clamp(h, controller.min_time_step(), controller.max_time_step());
   for (int step = 1;; ++step) {
     const double left = t_stop - sim.state().time;
-    if (left <= 1e-12 * adaptive.t_end) return;
+    // Done, up to round-off of the summed steps (and never a step below the
+    // smallest a Simulation takes).
+    if (left <= std::max(1e-12 * adaptive.t_end, limits::kMinTimeStep)) return;
     if (step > limits::kMaxSteps) {
       run->termination = RunTermination::kStepLimit;
       return;
