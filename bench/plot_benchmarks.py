@@ -12,6 +12,9 @@
       (and tolerance, a column when there are several)
   plot_benchmarks.py scaling RESULTS.csv --out docs/img [--time min]
       scaling.{png,svg} and a markdown table with fitted exponents
+  plot_benchmarks.py adaptive ADAPTIVE.csv --out docs/img
+      adaptive_steps.{png,svg}  error vs wall time, fixed h against --adaptive,
+                                one panel per scene (bench/adaptive_steps.sh's CSV)
 
 --time: ms per step from the median of the timed runs (default) or from the
 fastest one (min: on a shared machine, the run least disturbed by others).
@@ -299,15 +302,45 @@ def scaling(rows, out):
     save(fig, out, "scaling")
 
 
+def adaptive(path, out):
+    """Work-precision of fixed against adaptive steps (bench/adaptive_steps.sh)."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    scenes = []
+    for r in rows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 3.8), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        groups = defaultdict(list)
+        for r in rows:
+            error, seconds = number(r["position_error"]), number(r["wall_s"])
+            if r["scene"] == scene and error > 0 and seconds > 0 and r["failed"] == "0":
+                groups[(r["integrator"], r["mode"])].append((seconds, error))
+        for (integrator, mode), points in sorted(groups.items()):  # coarse to fine, as run
+            ax.loglog([p[0] for p in points], [p[1] for p in points],
+                      "o-" if mode == "fixed" else "s--", label=f"{integrator}, {mode}")
+        ax.set_title(scene)
+        ax.set_xlabel("wall time of the run [s]")
+        ax.set_ylabel("final position error [m]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    save(fig, out, "adaptive_steps")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("mode", choices=["work-precision", "table", "scaling"])
+    parser.add_argument("mode", choices=["work-precision", "table", "scaling", "adaptive"])
     parser.add_argument("csv", nargs="+")
     parser.add_argument("--out", default="docs/img")
     parser.add_argument("--baseline", default="projected_newton")
     parser.add_argument("--time", choices=["median", "min"], default="median")
     args = parser.parse_args()
+    if args.mode == "adaptive":
+        for path in args.csv:
+            adaptive(path, args.out)
+        return
     rows = [r for path in args.csv for r in read(path, args.time)]
     if not rows:
         sys.exit(f"{args.csv}: no rows")

@@ -43,6 +43,9 @@ for name in ("work_precision", "convergence", "iterations", "energy_drift"):
     assert os.path.getsize(f"{work}/plots/{name}.png") > 0, name
 print("diverged runs left out; every plot drawn")
 PY
+"$python" "$source/bench/plot_benchmarks.py" adaptive "$source/bench/results/adaptive_steps.csv" \
+  --out "$work/plots" > /dev/null
+test -s "$work/plots/adaptive_steps.png" || { echo "no adaptive_steps.png"; exit 1; }
 "$python" "$source/bench/plot_benchmarks.py" table "$work/with_legacy.csv" > "$work/table.md"
 if [ "$(grep -c '| diverged' "$work/table.md")" -ne 3 ]; then
   echo "the table should mark three runs diverged:"
