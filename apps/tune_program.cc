@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -129,7 +130,8 @@ int Run(const EffectRegistry& registry) {
   for (const std::string& name : integrators) {
     IntegratorOptions check = base.integrator;
     check.name = name;
-    if (!MakeIntegrator(check)->is_variational() || MakeIntegrator(check)->order() < 1) {
+    const std::unique_ptr<Integrator> integrator = MakeIntegrator(check);
+    if (!integrator->is_variational() || integrator->order() < 1) {
       throw InputError("flag", "--tune_integrators",
                        "'" + ClipInput(name) + "': only dynamic variational integrators");
     }

@@ -271,14 +271,10 @@ Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec) 
   return out;
 }
 
-std::string ReferenceCache::ReferenceIntegrator(const std::string& integrator) {
-  return ReferenceIntegratorFor(integrator);
-}
-
 const ReferenceSolution& ReferenceCache::Get(const std::string& scene, int grid_size,
                                              const std::string& integrator, double dt_min,
                                              double t_end) {
-  const std::string method = ReferenceIntegrator(integrator);
+  const std::string method = ReferenceIntegratorFor(integrator);
   const auto key = std::make_tuple(scene, grid_size, method, dt_min, t_end);
   auto found = cache_.find(key);
   if (found != cache_.end()) return found->second;

@@ -101,9 +101,6 @@ class ReferenceCache {
  public:
   ReferenceCache(std::string optimizer, double tolerance, const EffectRegistry* effects = nullptr)
       : optimizer_(std::move(optimizer)), tolerance_(tolerance), effects_(effects) {}
-  // The reference integrator for runs of `integrator`: quasi_static for
-  // quasi_static (a different problem), newmark (trapezoidal, order 2) otherwise.
-  static std::string ReferenceIntegrator(const std::string& integrator);
   // Keeps every reference also as a file in `directory` (created if needed)
   // and reads it from there when another run of the same sweep (a shard, or a
   // later sweep of the same build) computed it: one file per key (scene, grid,

@@ -71,6 +71,12 @@ class Integrator {
   // Explicit integrators only: advances `state` by h given the forces
   // f(x_n, v_n) (including gravity).
   virtual void Advance(const Eigen::VectorXd& forces, double h, State* state) const;
+
+ protected:
+  // The largest |after_i - before_i| over the free nodes of `state` (vectors
+  // of its per-node layout: velocities, accelerations), for LocalError.
+  static double LargestFreeNodeChange(const State& state, const Eigen::VectorXd& before,
+                                      const Eigen::VectorXd& after);
 };
 
 struct IntegratorOptions {

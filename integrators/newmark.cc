@@ -1,6 +1,5 @@
 #include "integrators/newmark.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace ipstep {
@@ -55,14 +54,8 @@ void Newmark::UpdateWithImpulses(const Eigen::VectorXd& x_next,
 }
 
 double Newmark::LocalError(const State& before, const State& after, double h) const {
-  const int dim = after.dimension;
-  double worst = 0.0;
-  for (int i = 0; i < after.num_nodes(); ++i) {
-    if (!after.is_free(i)) continue;
-    worst =
-        std::max(worst, (after.a.segment(dim * i, dim) - before.a.segment(dim * i, dim)).norm());
-  }
-  return h * h * (std::abs(beta_ - 1.0 / 6.0) + std::abs(gamma_ - 0.5)) * worst;
+  return h * h * (std::abs(beta_ - 1.0 / 6.0) + std::abs(gamma_ - 0.5)) *
+         LargestFreeNodeChange(after, before.a, after.a);
 }
 
 }  // namespace ipstep

@@ -13,12 +13,6 @@ namespace {
 // velocities for K_p).
 constexpr int kMotionSamples = 64;
 
-std::string Format(const char* format, double a, double b, double c) {
-  char text[200];
-  std::snprintf(text, sizeof(text), format, a, b, c);
-  return text;
-}
-
 }  // namespace
 
 const char* DivergenceRule::Description() {
@@ -32,8 +26,8 @@ DivergenceRule::DivergenceRule(const Simulation& sim, double t_end) {
   const int dim = s.dimension;
   const int n = s.num_nodes();
   start_time_ = s.time;
-  const EnergyReport e0 = sim.Energies();
-  initial_energy_ = e0.total();
+  initial_energies_ = sim.Energies();
+  const EnergyReport& e0 = initial_energies_;
   const Eigen::VectorXd& g = sim.gravity();
   double gravity_energy = 0.0, mass = 0.0, speed = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -91,7 +85,7 @@ double DivergenceRule::Reach(double t) const {
 
 double DivergenceRule::Drift(double time, double energy, double work) const {
   const double scale = EnergyScale(std::max(0.0, time - start_time_), work);
-  return scale > 0.0 ? std::abs(energy - initial_energy_) / scale : 0.0;
+  return scale > 0.0 ? std::abs(energy - initial_energy()) / scale : 0.0;
 }
 
 std::string DivergenceRule::Check(const Simulation& sim, const StepReport& report,
@@ -103,11 +97,11 @@ std::string DivergenceRule::Check(const Simulation& sim, const StepReport& repor
   if (!std::isfinite(energy)) return "the energy is not finite";
   const double t = std::max(0.0, s.time - start_time_);
   const double scale = EnergyScale(t, work);
-  if (scale > 0.0 && std::abs(energy - initial_energy_) > kEnergyFactor * scale) {
+  if (scale > 0.0 && std::abs(energy - initial_energy()) > kEnergyFactor * scale) {
     char text[200];
     std::snprintf(text, sizeof(text),
                   "the energy %.3g J is %.3g energy scales (%.3g J) from the initial %.3g J",
-                  energy, std::abs(energy - initial_energy_) / scale, scale, initial_energy_);
+                  energy, std::abs(energy - initial_energy()) / scale, scale, initial_energy());
     return text;
   }
   const double reach = Reach(t);
@@ -116,9 +110,11 @@ std::string DivergenceRule::Check(const Simulation& sim, const StepReport& repor
     for (int i = 0; i < s.num_nodes(); ++i) {
       const double distance = (s.x.segment(dim * i, dim) - center_).norm();
       if (distance > kReachFactor * reach) {
-        return "node " + std::to_string(i) +
-               Format(" is %.3g m from the scene's centre, %.3g times its reach (%.3g m)", distance,
-                      distance / reach, reach);
+        char text[200];
+        std::snprintf(text, sizeof(text),
+                      "node %d is %.3g m from the scene's centre, %.3g times its reach (%.3g m)", i,
+                      distance, distance / reach, reach);
+        return text;
       }
     }
   }

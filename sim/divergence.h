@@ -33,6 +33,8 @@
 
 #include <Eigen/Core>
 
+#include "core/forces.h"
+
 namespace ipstep {
 
 class Simulation;
@@ -62,12 +64,13 @@ class DivergenceRule {
   // |energy - E_0| / E_s(time - start) at simulated `time` [s]; 0 for a scale
   // of 0.
   double Drift(double time, double energy, double work = 0.0) const;
-  double initial_energy() const { return initial_energy_; }
+  double initial_energy() const { return initial_energies_.total(); }
+  const EnergyReport& initial_energies() const { return initial_energies_; }
   double start_time() const { return start_time_; }
 
  private:
   double start_time_ = 0.0;
-  double initial_energy_ = 0.0;
+  EnergyReport initial_energies_;
   double stored_energy_ = 0.0;  // K_0 + |U_0 - U_g0| + K_p
   double weight_ = 0.0;         // M |g|
   double gravity_ = 0.0;        // |g|

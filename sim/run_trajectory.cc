@@ -53,7 +53,7 @@ class StepRecorder {
  public:
   StepRecorder(Simulation* sim, const RunOptions& options, double t_end, RunSummary* run)
       : sim_(sim), options_(options), rule_(*sim, t_end), run_(run), start_(Clock::now()) {
-    run_->initial_energies = sim->Energies();
+    run_->initial_energies = rule_.initial_energies();
     run_->final_energies = run_->initial_energies;
     run_->energy_scale = rule_.EnergyScale(0.0);
   }
@@ -190,22 +190,22 @@ void RunAdaptive(Simulation& sim, const AdaptiveOptions& adaptive, RunSummary* r
       StepReport report = sim.Step(h_try, /*retry_as_substeps=*/false);
       StepSizeController::Decision decision;
       if (report.converged) {
-        // The velocity change of the contact forces' change over the step.
-        Eigen::VectorXd impulse_dv, end_forces;
+        // The contact forces' change over the step and the forces themselves,
+        // as the position errors h/2 |h M^-1 df_c| and h^2/2 |M^-1 f_c|.
+        Eigen::VectorXd end_forces;
         double impact_error = 0.0, contact_error = 0.0;
         if (impulsive && sim.ImpulsiveForces(sim.state().x, &end_forces)) {
           const State& s = sim.state();
           const int dim = s.dimension;
-          impulse_dv = Eigen::VectorXd::Zero(s.num_dofs());
           for (int i = 0; i < s.num_nodes(); ++i) {
             if (!s.is_free(i)) continue;
-            impulse_dv.segment(dim * i, dim) =
-                (h_try / s.mass[i]) *
-                (end_forces.segment(dim * i, dim) - start_forces.segment(dim * i, dim));
-            impact_error =
-                std::max(impact_error, 0.5 * h_try * impulse_dv.segment(dim * i, dim).norm());
-            contact_error = std::max(contact_error, 0.5 * h_try * h_try / s.mass[i] *
-                                                        end_forces.segment(dim * i, dim).norm());
+            const double share = 0.5 * h_try * h_try / s.mass[i];
+            impact_error = std::max(
+                impact_error,
+                share *
+                    (end_forces.segment(dim * i, dim) - start_forces.segment(dim * i, dim)).norm());
+            contact_error =
+                std::max(contact_error, share * end_forces.segment(dim * i, dim).norm());
           }
         }
         const double error = sim.integrator().LocalError(start.state, sim.state(), h_try);

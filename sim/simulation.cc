@@ -256,12 +256,12 @@ EnergyReport Simulation::Energies() const {
 StepReport Simulation::Step() { return Step(time_step_); }
 
 Simulation::Checkpoint Simulation::Save() const {
-  return Checkpoint{state_, run_energy_.growth, run_energy_.scale, run_energy_.floor, steps_taken_};
+  return Checkpoint{state_, run_energy_, steps_taken_};
 }
 
 void Simulation::Restore(const Checkpoint& checkpoint) {
   state_ = checkpoint.state;
-  run_energy_ = {checkpoint.energy_growth, checkpoint.energy_scale, checkpoint.energy_floor};
+  run_energy_ = checkpoint.energy;
   steps_taken_ = checkpoint.steps_taken;
 }
 
@@ -276,15 +276,13 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
   StepReport report;
   report.step = ++steps_taken_;
   report.time_step = h;
-  const State saved = state_;
-  const RunEnergyBalance saved_energy = run_energy_;
+  const Checkpoint saved = Save();
   Advance(h, &report);
   const int max_substeps = retry_as_substeps ? options_.max_substeps : 1;
   if (!report.converged && max_substeps > 1) report.retry_reason = report.status;
   // Retry a failed step as 2, 4, ... substeps from the same start.
   for (int substeps = 2; !report.converged && substeps <= max_substeps; substeps *= 2) {
-    state_ = saved;
-    run_energy_ = saved_energy;
+    Restore(saved);
     const double h_sub = h / substeps;
     integrator_->SetWeights(h_sub, &potential_->context());
     StepReport attempt;
@@ -313,7 +311,7 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
                         ? "converged"
                         : attempt.status + " (also with " + std::to_string(substeps) + " substeps)";
   }
-  state_.time = saved.time + h;
+  state_.time = saved.state.time + h;
   report.time = state_.time;
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -88,11 +88,19 @@ class Simulation {
   // controller retries it).
   StepReport Step(double h, bool retry_as_substeps = true);
 
-  // The state a step starts from, to go back to (a rejected adaptive step):
-  // the state, the run's energy balance and the step count.
+  // Energy balance over the run (sim/energy_balance.h): the sum of the
+  // steps' growth and floors, and the largest energy in motion of any step.
+  struct RunEnergyBalance {
+    double growth = 0.0;
+    double scale = 0.0;
+    double floor = 0.0;
+  };
+  // The state a step starts from, to go back to (a failed step retried as
+  // substeps, a rejected adaptive step): the state, the run's energy balance
+  // and the step count.
   struct Checkpoint {
     State state;
-    double energy_growth = 0.0, energy_scale = 0.0, energy_floor = 0.0;
+    RunEnergyBalance energy;
     int steps_taken = 0;
   };
   Checkpoint Save() const;
@@ -151,13 +159,6 @@ class Simulation {
   std::unique_ptr<IncrementalPotential> potential_;
   std::unique_ptr<StepSolver> solver_;
   std::vector<std::string> effect_summaries_;
-  // Energy balance over the run (sim/energy_balance.h): the sum of the
-  // steps' growth and floors, and the largest energy in motion of any step.
-  struct RunEnergyBalance {
-    double growth = 0.0;
-    double scale = 0.0;
-    double floor = 0.0;
-  };
   RunEnergyBalance run_energy_;
 };
 
