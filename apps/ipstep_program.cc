@@ -91,10 +91,6 @@ int Run(const EffectRegistry& registry) {
       adaptive.max_time_step = CheckFlagRange("max_dt", FLAGS_max_dt, limits::kMinTimeStep,
                                               limits::kMaxTimeStep, "s", "");
     }
-    if (adaptive.min_time_step > 0.0 && adaptive.max_time_step > 0.0 &&
-        adaptive.min_time_step > adaptive.max_time_step) {
-      throw InputError("flag", "--min_dt", "must not exceed --max_dt");
-    }
     // The solve's tolerance follows the error budget unless --tolerance says.
     if (FlagIsDefault("tolerance")) {
       options.optimizer.tolerance = AdaptiveSolverTolerance(adaptive);
@@ -113,12 +109,7 @@ int Run(const EffectRegistry& registry) {
     }
   }
   Simulation sim(scene, options);
-  if (run_options.adaptive && sim.integrator().order() < 1) {
-    throw InputError("flag", "--adaptive",
-                     sim.integrator().name() +
-                         " has no time-discretisation error to control; adaptive steps need a "
-                         "dynamic integrator");
-  }
+  ValidateRunOptions(sim, run_options);  // before any output: one error line
 
   std::unique_ptr<StatsWriter> stats;
   std::unique_ptr<IterationLogWriter> iterations;

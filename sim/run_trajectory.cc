@@ -243,8 +243,7 @@ void RunAdaptive(Simulation& sim, const AdaptiveOptions& adaptive, RunSummary* r
 
 }  // namespace
 
-RunSummary RunTrajectory(Simulation& sim, const RunOptions& options) {
-  const int remaining = std::max(0, sim.steps() - sim.steps_taken());
+void ValidateRunOptions(const Simulation& sim, const RunOptions& options) {
   if (options.steps < -1 || options.steps > limits::kMaxSteps) {
     throw InputError("options", "RunOptions.steps",
                      "must be -1 (the simulation's steps) or in [0, " +
@@ -255,19 +254,25 @@ RunSummary RunTrajectory(Simulation& sim, const RunOptions& options) {
     throw InputError("options", "RunOptions.max_wall_seconds",
                      "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s"));
   }
+  if (!options.adaptive) return;
+  ValidateAdaptiveOptions(options.adaptive_options);
+  if (options.steps != -1) {
+    throw InputError("options", "RunOptions.steps",
+                     "an adaptive run's steps follow from its error tolerance: leave it -1");
+  }
+  if (sim.integrator().order() < 1) {
+    throw InputError("options", "RunOptions.adaptive",
+                     sim.integrator().name() +
+                         " has no time-discretisation error to control; adaptive steps need "
+                         "a dynamic integrator");
+  }
+}
+
+RunSummary RunTrajectory(Simulation& sim, const RunOptions& options) {
+  ValidateRunOptions(sim, options);
+  const int remaining = std::max(0, sim.steps() - sim.steps_taken());
   RunSummary run;
   if (options.adaptive) {
-    ValidateAdaptiveOptions(options.adaptive_options);
-    if (options.steps != -1) {
-      throw InputError("options", "RunOptions.steps",
-                       "an adaptive run's steps follow from its error tolerance: leave it -1");
-    }
-    if (sim.integrator().order() < 1) {
-      throw InputError("options", "RunOptions.adaptive",
-                       sim.integrator().name() +
-                           " has no time-discretisation error to control; adaptive steps need "
-                           "a dynamic integrator");
-    }
     run.adaptive = true;
     StepRecorder recorder(&sim, options, options.adaptive_options.t_end, &run);
     RunAdaptive(sim, options.adaptive_options, &run, &recorder);

@@ -89,6 +89,12 @@ struct RunSummary {
   bool diverged() const { return diverged_at > 0; }
 };
 
+// Throws InputError naming the option if `options` cannot run `sim` (out of
+// range; adaptive steps with steps set, invalid AdaptiveOptions or an
+// integrator without time error). RunTrajectory calls it first; a program
+// calls it before it prints anything.
+void ValidateRunOptions(const Simulation& sim, const RunOptions& options);
+
 // Runs `sim` from its current state. Never throws for what happens in a step
 // (a failure or a divergence is in the summary); throws InputError for
 // options out of range.

@@ -37,7 +37,10 @@ void ValidateAdaptiveOptions(const AdaptiveOptions& o) {
     throw InputError("options", "AdaptiveOptions.max_time_step", why);
   }
   if (o.min_time_step > 0.0 && o.max_time_step > 0.0 && o.min_time_step > o.max_time_step) {
-    throw InputError("options", "AdaptiveOptions.min_time_step", "must not exceed max_time_step");
+    throw InputError("options", "AdaptiveOptions.min_time_step",
+                     "the smallest step " + limits::FormatLimit(o.min_time_step) +
+                         " s must not exceed the largest, " + limits::FormatLimit(o.max_time_step) +
+                         " s");
   }
   if (!(o.safety > 0.0 && o.safety <= 1.0)) {
     throw InputError("options", "AdaptiveOptions.safety", "must be in (0, 1]");
