@@ -164,7 +164,8 @@ int Run(const EffectRegistry& registry) {
         reference.error);
   }
 
-  auto measure = [&](Candidate* c) {
+  // Runs `c` and measures its error (against `against` for --measure=position).
+  auto measure_against = [&](Candidate* c, const ReferenceSolution& against) {
     SimulationOptions options = base;
     options.integrator.name = c->integrator;
     options.optimizer.optimizer = ParseOptimizer(c->optimizer);
@@ -190,7 +191,7 @@ int Run(const EffectRegistry& registry) {
     c->failed = run.failed;
     c->status = run.message;
     if (run.termination != RunTermination::kCompleted || run.diverged()) return;
-    c->error = position ? MaxNodeDistance(sim.state().x, reference.x, FreeNodes(sim.state()),
+    c->error = position ? MaxNodeDistance(sim.state().x, against.x, FreeNodes(sim.state()),
                                           sim.state().dimension)
                         : run.max_energy_drift;
   };
@@ -225,7 +226,7 @@ int Run(const EffectRegistry& registry) {
             break;
           }
           Candidate c = family[k];
-          measure(&c);
+          measure_against(&c, reference);
           std::fprintf(stderr, "ipstep_tune: %s: error %.3g, %.3f s, %d steps%s\n",
                        Label(c).c_str(), c.error, c.seconds, c.steps,
                        std::isnan(c.error) ? (" (" + c.status + ")").c_str() : "");
@@ -277,7 +278,7 @@ int Run(const EffectRegistry& registry) {
   Candidate fallback =
       Fixed("backward_euler", "newton", t_end / std::max(1.0, std::round(t_end / dt)),
             OptimizerOptions{}.tolerance);
-  measure(&fallback);
+  measure_against(&fallback, reference);
   if (fallback.error <= FLAGS_target_error) {
     std::printf(
         "the default (backward_euler + newton at h = %g s): error %.3g, %.3f s: %.1fx "
@@ -294,10 +295,7 @@ int Run(const EffectRegistry& registry) {
     finer.refinement = 128;
     const ReferenceSolution tight = ComputeReference(scene, base, finer, dt, t_end);
     Candidate again = *winner;
-    const ReferenceSolution saved = reference;
-    reference = tight;
-    measure(&again);
-    reference = saved;
+    measure_against(&again, tight);
     std::printf("validated against %s: error %.3g (%s the target)\n", tight.description.c_str(),
                 again.error, again.error <= FLAGS_target_error ? "within" : "NOT within");
   }
