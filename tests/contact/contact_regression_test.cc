@@ -1,9 +1,16 @@
 // The contact code's behaviour, pinned: every contact scene (each pair kind,
 // friction, moving obstacles, 2D self-contact, both integrators, the three
 // optimiser families) runs a fixed number of steps and must reproduce the
-// iterations of every step exactly and the final positions to 1e-9 m of the
-// reference recorded before the contact filter was split into pair sets
-// (tests/contact/data/contact_reference.txt). A deliberate change of behaviour
+// iterations of every step exactly and the final positions to the stopping
+// rule's resolution tau h of the reference recorded before the contact filter
+// was split into pair sets (tests/contact/data/contact_reference.txt). A
+// step's solution is defined only to that resolution (core/stopping_rule.h:
+// a converged step may keep a velocity error of tau), and the BLAS kernels
+// behind the factorisations are chosen per CPU model at run time (OpenBLAS),
+// so machines round differently: the cloth scenes' final positions differed
+// by 4.1e-9 m (cloth_sphere) and 2.8e-9 m (cloth_box) on an AMD EPYC from the
+// reference, with the same iterations on every step; tau h is 2.5e-8 and
+// 5e-8 m there. A deliberate change of behaviour
 // regenerates the reference:
 //   IPSTEP_WRITE_CONTACT_REFERENCE=1 ./build/tests/contact_regression_test
 // and says why in its commit.
@@ -53,6 +60,7 @@ const Case kCases[] = {
 struct Record {
   std::vector<int> iterations;
   std::vector<double> positions;
+  double resolution = 0.0;  // tau h [m]: how far a step's solution is defined
 };
 
 std::string Key(const Case& c) {
@@ -79,6 +87,7 @@ Record RunCase(const Case& c) {
   options.max_substeps = 16;
   Simulation sim(scene, options);
   Record record;
+  record.resolution = options.optimizer.tolerance * scene.time_step;
   for (int s = 0; s < c.steps; ++s) {
     const StepReport report = sim.Step();
     record.iterations.push_back(report.iterations);
@@ -137,7 +146,8 @@ TEST(ContactRegression, IterationsAndTrajectoriesMatchTheReference) {
     for (size_t k = 0; k < r.positions.size(); ++k) {
       worst = std::max(worst, std::abs(r.positions[k] - it->second.positions[k]));
     }
-    EXPECT_LE(worst, 1e-9) << "largest position difference [m]";
+    EXPECT_GT(r.resolution, 0.0);
+    EXPECT_LE(worst, r.resolution) << "largest position difference [m]";
   }
 }
 

@@ -111,6 +111,9 @@ struct Case {
   bool self_contact = true;
   const char* optimizer = "newton";
   double time_step = 0.0;  // 0: the scene's
+  // > 0: stop this many steps after the first step in self-contact (`steps`
+  // is then the most it may take to get there).
+  int steps_after_contact = 0;
 };
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << c.integrator; }
@@ -134,8 +137,14 @@ TEST_P(SelfContactScenes, NoIntersectionNoTouching) {
   const double d_hat = scene.effect_parameters.at("contact").at("dhat").get<double>();
   int iterations = 0, self_steps = 0;
   double seconds = 0.0, broad_phase_ms = 0.0, smallest = std::numeric_limits<double>::infinity();
+  int steps = 0, first_contact = -1;
   for (int step = 0; step < c.steps; ++step) {
+    if (c.steps_after_contact > 0 && first_contact >= 0 &&
+        step >= first_contact + c.steps_after_contact) {
+      break;
+    }
     const StepReport r = sim.Step();
+    ++steps;
     ASSERT_TRUE(r.converged) << c.scene << " " << c.integrator << " step " << r.step << " "
                              << r.status;
     iterations += r.iterations;
@@ -146,12 +155,13 @@ TEST_P(SelfContactScenes, NoIntersectionNoTouching) {
     ASSERT_GT(check.min_distance, 0.0) << c.scene << " step " << r.step;
     smallest = std::min(smallest, check.min_distance);
     self_steps += check.close > 0;
+    if (check.close > 0 && first_contact < 0) first_contact = step;
   }
   std::printf(
       "%s %s: %d steps, %.1f iterations/step, %.1f ms/step (broad phase %.1f), self-contact on "
       "%d steps, smallest self distance %.3g m (d_hat %g)\n",
-      c.scene, c.integrator, c.steps, double(iterations) / c.steps, 1e3 * seconds / c.steps,
-      broad_phase_ms / c.steps, self_steps, smallest, d_hat);
+      c.scene, c.integrator, steps, double(iterations) / steps, 1e3 * seconds / steps,
+      broad_phase_ms / steps, self_steps, smallest, d_hat);
   if (c.self_contact) {
     EXPECT_GT(self_steps, 0) << "no self-contact happened";
   }
@@ -172,8 +182,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // The trapezoidal rule is not energy-stable on
                       // this stiff strip at the scene's 5 ms
                       // (docs/self_contact.md): at 1 ms self-contact
-                      // from step 766 (t = 0.766 s) on.
-                      Case{"cloth_twist", "newmark", 790, true, "projected_newton", 0.001}),
+                      // from step 766 (t = 0.766 s) on one machine, 804
+                      // on another (an AMD EPYC: the strip's motion
+                      // amplifies rounding); 25 steps in contact, at
+                      // most 900 to get there.
+                      Case{"cloth_twist", "newmark", 900, true, "projected_newton", 0.001, 25}),
     [](const ::testing::TestParamInfo<Case>& info) {
       return std::string(info.param.scene) + "_" + info.param.integrator;
     });
