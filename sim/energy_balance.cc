@@ -1,5 +1,6 @@
 #include "sim/energy_balance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -23,7 +24,8 @@ bool MeasureEnergy(const IncrementalPotential& potential, const State& state,
 }
 
 EnergyBalance BalanceOf(const EnergyPoint& start, const EnergyPoint& end, const State& state,
-                        double filter_work, double tolerance_per_h) {
+                        const Eigen::VectorXd& gravity, double filter_work,
+                        double tolerance_per_h) {
   EnergyBalance b;
   b.start = start.energy.total();
   b.end = end.energy.total();
@@ -38,14 +40,32 @@ EnergyBalance BalanceOf(const EnergyPoint& start, const EnergyPoint& end, const 
           (segment(start.gradient) + segment(end.gradient)).dot(segment(end.x) - segment(start.x));
     }
   }
+  double gravity_work = 0.0;
   for (int i = 0; i < state.num_nodes(); ++i) {
     if (!state.is_free(i)) continue;
-    b.floor += state.mass[i] * tolerance_per_h *
-               (end.x.segment(dim * i, dim) - start.x.segment(dim * i, dim)).norm();
+    const Eigen::VectorXd dx = end.x.segment(dim * i, dim) - start.x.segment(dim * i, dim);
+    b.floor += state.mass[i] * tolerance_per_h * dx.norm();
+    if (gravity.size() == dim) gravity_work += state.mass[i] * gravity.dot(dx);
   }
-  b.scale = start.energy.kinetic + end.energy.kinetic + std::abs(start.potential_without_gravity) +
-            std::abs(end.potential_without_gravity) + std::abs(b.work);
+  b.scale = start.energy.kinetic + std::abs(start.potential_without_gravity) + std::abs(b.work) +
+            std::abs(gravity_work);
   return b;
+}
+
+RunEnergyBalance RunEnergyBalance::After(const EnergyBalance& step) const {
+  RunEnergyBalance run;
+  run.growth = growth + step.growth();
+  run.scale = std::max(scale, step.scale - std::max(0.0, growth));
+  run.floor = floor + step.floor;
+  return run;
+}
+
+std::string RunEnergyBalance::Describe() const {
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "energy growth over the run: %+.3g J (%.3g %% of the energy in motion, %.3g J)",
+                growth, scale > 0.0 ? 100.0 * growth / scale : INFINITY, scale);
+  return text;
 }
 
 std::string EnergyBalance::Describe() const {

@@ -18,16 +18,26 @@
 // step's pairs and stiffness at x_n), so a raised barrier stiffness is not
 // counted as growth.
 //
-// The tolerance is relative to the energy in motion,
-//   scale = K_n + K_{n+1} + |U'_n| + |U'_{n+1}| + |W|,
+// The tolerance is relative to the energy in motion at the start of the step
+// plus the work done on the system during it,
+//   scale = K_n + |U'_n| + |W| + |W_g|,
 // U' the potential energy without gravity (kinetic and elastic energy, which
-// does not depend on where gravity's potential is zero), plus what the
-// stopping rule leaves open: a converged step may keep a force imbalance of
-// up to m_i tau / h on every free node (core/stopping_rule.h), whose work over
-// the step's displacement is at most
+// does not depend on where gravity's potential is zero) and
+// W_g = sum_i m_i g . (x_{n+1,i} - x_{n,i}) the work gravity does over the step
+// (a body released from rest has K_n = U'_n = 0 and still moves). The end of
+// the step is not in the scale: energy a step creates would otherwise widen its
+// own allowance. On top of that comes what the stopping rule leaves open: a
+// converged step may keep a force imbalance of up to m_i tau / h on every free
+// node (core/stopping_rule.h), whose work over the step's displacement is at most
 //   floor = sum_i m_i tau / h |x_{n+1,i} - x_{n,i}|.
 // A step with growth > tolerance * scale + floor is not converged: status
 // "energy growth".
+//
+// Over the run (RunEnergyBalance) the steps' growths and floors add up, and the
+// scale is the largest step scale less the growth accumulated before that step
+// (energy created earlier is in motion too, but must not widen the allowance for
+// more): a closed system ends within the tolerance of the energy in motion it
+// had, not of what it grew to.
 #pragma once
 
 #include <string>
@@ -66,9 +76,23 @@ struct EnergyBalance {
   std::string Describe() const;
 };
 
-// `filter_work`: the sum of the step filters' PrescribedWork; `tolerance_per_h`:
-// the stopping tolerance tau over the step's h.
+// `filter_work`: the sum of the step filters' PrescribedWork; `gravity`: the
+// acceleration of gravity (one entry per dimension); `tolerance_per_h`: the
+// stopping tolerance tau over the step's h.
 EnergyBalance BalanceOf(const EnergyPoint& start, const EnergyPoint& end, const State& state,
-                        double filter_work, double tolerance_per_h);
+                        const Eigen::VectorXd& gravity, double filter_work,
+                        double tolerance_per_h);
+
+// The balance over the steps done so far.
+struct RunEnergyBalance {
+  double growth = 0.0;  // sum of the steps' growth
+  double scale = 0.0;   // largest step scale less the growth before that step
+  double floor = 0.0;   // sum of the steps' floors
+  // The run's balance once `step` is added.
+  RunEnergyBalance After(const EnergyBalance& step) const;
+  bool Exceeds(double tolerance) const { return growth > tolerance * scale + floor; }
+  // "energy growth over the run: +G J (P % of the energy in motion, S J)".
+  std::string Describe() const;
+};
 
 }  // namespace ipstep

@@ -396,29 +396,23 @@ void Simulation::Advance(double h, StepReport* report) {
                    filter->PrescribedWork(energy_start.x.data(), energy_end.x.data());
   }
   const EnergyBalance balance =
-      BalanceOf(energy_start, energy_end, state_, filter_work, options_.optimizer.tolerance / h);
+      BalanceOf(energy_start, energy_end, state_, gravity_, filter_work,
+                options_.optimizer.tolerance / h);
   report->energy_growth = balance.growth();
   report->prescribed_work = balance.work;
   VLOG(2) << "energy balance: " << balance.Describe() << " start " << balance.start << " end "
           << balance.end << " work " << balance.work << " floor " << balance.floor;
   // Per step, and over the run: energy created a little at a time, each step
   // under the tolerance, adds up to the same.
-  const double run_scale = std::max(run_energy_.scale, balance.scale);
-  const double run_growth = run_energy_.growth + balance.growth();
-  const double run_floor = run_energy_.floor + balance.floor;
+  const RunEnergyBalance run = run_energy_.After(balance);
   if (balance.Exceeds(options_.energy_tolerance)) {
     report->converged = false;
     report->status = balance.Describe();
-  } else if (run_growth > options_.energy_tolerance * run_scale + run_floor) {
+  } else if (run.Exceeds(options_.energy_tolerance)) {
     report->converged = false;
-    char text[160];
-    std::snprintf(text, sizeof(text),
-                  "energy growth over the run: %+.3g J (%.3g %% of the largest energy in motion, "
-                  "%.3g J)",
-                  run_growth, 100.0 * run_growth / run_scale, run_scale);
-    report->status = text;
+    report->status = run.Describe();
   }
-  run_energy_ = {run_growth, run_scale, run_floor};
+  run_energy_ = run;
 }
 
 }  // namespace ipstep

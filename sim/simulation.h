@@ -16,6 +16,7 @@
 #include "energies/effect_registry.h"
 #include "integrators/integrator.h"
 #include "problems/scene.h"
+#include "sim/energy_balance.h"
 #include "solver/step_solver.h"
 
 namespace ipstep {
@@ -88,13 +89,6 @@ class Simulation {
   // controller retries it).
   StepReport Step(double h, bool retry_as_substeps = true);
 
-  // Energy balance over the run (sim/energy_balance.h): the sum of the
-  // steps' growth and floors, and the largest energy in motion of any step.
-  struct RunEnergyBalance {
-    double growth = 0.0;
-    double scale = 0.0;
-    double floor = 0.0;
-  };
   // The state a step starts from, to go back to (a failed step retried as
   // substeps, a rejected adaptive step): the state, the run's energy balance
   // and the step count.
