@@ -80,8 +80,7 @@ struct EnergyBalance {
 // acceleration of gravity (one entry per dimension); `tolerance_per_h`: the
 // stopping tolerance tau over the step's h.
 EnergyBalance BalanceOf(const EnergyPoint& start, const EnergyPoint& end, const State& state,
-                        const Eigen::VectorXd& gravity, double filter_work,
-                        double tolerance_per_h);
+                        const Eigen::VectorXd& gravity, double filter_work, double tolerance_per_h);
 
 // The balance over the steps done so far.
 struct RunEnergyBalance {

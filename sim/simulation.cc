@@ -395,9 +395,8 @@ void Simulation::Advance(double h, StepReport* report) {
     filter_work += integrator_->impulsive_energy_factor() *
                    filter->PrescribedWork(energy_start.x.data(), energy_end.x.data());
   }
-  const EnergyBalance balance =
-      BalanceOf(energy_start, energy_end, state_, gravity_, filter_work,
-                options_.optimizer.tolerance / h);
+  const EnergyBalance balance = BalanceOf(energy_start, energy_end, state_, gravity_, filter_work,
+                                          options_.optimizer.tolerance / h);
   report->energy_growth = balance.growth();
   report->prescribed_work = balance.work;
   VLOG(2) << "energy balance: " << balance.Describe() << " start " << balance.start << " end "
