@@ -1,7 +1,7 @@
 // Optimiser names and the Ceres solver options each one sets. Every option can
 // be overridden (the ipstep program exposes each as a gflag); the defaults are
 // documented in README.md ("Optimisers") and were chosen by measurement
-// (bench/, ../shared/design-notes.md).
+// (bench/; the tables in docs/benchmarks.md).
 //
 //   name              path                      Ceres options
 //   newton            ceres::Problem, projected TRUST_REGION, LEVENBERG_MARQUARDT,
