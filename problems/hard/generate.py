@@ -70,11 +70,9 @@ def main():
               "impact at %d m/s with d_hat %g and h = %.3g s (6 mm per step)"
               % (speed, d_hat, scene["time_step"]))
 
-    stack = builtin("two_squares")
-    n = len(stack["nodes"]["positions"])
-    stack["nodes"]["velocities"] = [[0, 0] if i < 25 else [0, -20] for i in range(n)]
-    write("thrown_stack", stack, "two_squares with its upper square (nodes 25-49) thrown down at "
-          "20 m/s onto the lower one")
+    # thrown_stack.json is kept as a file, not generated: it is the mass-spring
+    # two_squares of before (two drop squares; the built-in is now a pair of
+    # neo-Hookean squares, and solids take no per-node initial velocities).
 
     write("mass_ratio", mass_ratio(),
           "A hanging 10 x 10 cloth (1 m, Hookean k = 1e4 structural and shear springs, top corners "
