@@ -57,7 +57,8 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
   c.step = context_;
   c.barrier_family = kContactFamily;
   c.friction_family = kFrictionFamily;
-  sets_ = MakePairSets(c, options_.self_contact, state->x.data());
+  sets_ = MakePairSets(c, options_.self_contact, state->x.data(),
+                       options_.self_contact_kappa > 0.0 ? &options_.self_contact_kappa : nullptr);
 }
 
 void ContactFilter::EnableFriction(const FrictionOptions& options) {
@@ -79,6 +80,9 @@ std::string ContactFilter::Summary() const {
   out << ", d_hat " << options_.d_hat << ", kappa ";
   out << (kappa_.adaptive() ? "adaptive from " : "")
       << (kappa_.adaptive() ? kappa_.min() : kappa_.value());
+  if (options_.self_contact && options_.self_contact_kappa > 0.0) {
+    out << ", self-contact kappa " << options_.self_contact_kappa;
+  }
   return out.str();
 }
 
@@ -114,8 +118,18 @@ double ContactFilter::MaxStepSize(const double* from, const double* to) const {
 }
 
 bool ContactFilter::IsFeasible(const double* x) const {
+  return CheckState(x) == Infeasibility::kNone;
+}
+
+StepFilter::Infeasibility ContactFilter::CheckState(const double* x) const {
+  if (!FindPenetration(x, time_.tau()).empty()) return Infeasibility::kPenetration;
   // A moving obstacle that did not reach its position leaves the step infeasible.
-  return time_.reached_end() && FindPenetration(x, time_.tau()).empty();
+  if (!time_.reached_end()) return Infeasibility::kBoundaryNotReached;
+  return Infeasibility::kNone;
+}
+
+double ContactFilter::ReachedTime() const {
+  return time_.has_moving_obstacles() ? time_.tau() : kInfinity;
 }
 
 void ContactFilter::Near(const double* x, double reach, double* min_distance, int* count) const {
@@ -160,8 +174,20 @@ double ContactFilter::Lag(const double* x) {
   return excess;
 }
 
+FrictionSettings ContactFilter::Friction() const {
+  return FrictionSettings{friction_.mu, friction_.epsilon_v, options_.self_contact_mu};
+}
+
+bool ContactFilter::AnyFriction() const {
+  if (!friction_enabled_) return false;
+  const FrictionSettings settings = Friction();
+  bool any = options_.self_contact && settings.ForSelf() > 0.0;
+  for (const ObstaclePtr& o : options_.obstacles) any |= settings.ForObstacle(*o) > 0.0;
+  return any;
+}
+
 void ContactFilter::LagFriction(const double* x, double t) {
-  if (!friction_enabled_ || !(friction_.mu > 0.0)) return;
+  if (!AnyFriction()) return;
   for (const auto& set : sets_) set->LagFriction(x, t);
 }
 
@@ -169,8 +195,8 @@ void ContactFilter::RebuildFrictionTerms() {
   if (!friction_enabled_) return;
   potential_->RemoveTerms(kFrictionFamily);
   num_friction_contacts_ = 0;
-  if (!(friction_.mu > 0.0)) return;
-  const FrictionSettings settings{friction_.mu, friction_.epsilon_v};
+  if (!AnyFriction()) return;
+  const FrictionSettings settings = Friction();
   for (const auto& set : sets_)
     num_friction_contacts_ += set->AddFrictionTerms(settings, potential_);
 }
@@ -204,7 +230,7 @@ void ContactFilter::UpdateKappa(const double* x_n) {
 
 void ContactFilter::BeginStep(const double* x_n) {
   broad_phase_at_begin_ = BroadPhaseSeconds();
-  time_.BeginStep(state_->time, context_->time_step);
+  time_.BeginStep(state_->time, context_->time_step, state_->boundary_lag);
   const double t_n = time_.t_n();
   // The barrier energy at x_n before and after this step's stiffness and pairs
   // (for the energy balance: PrescribedWork).
@@ -262,7 +288,7 @@ bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {
   return begin_energy_input_ +
-         time_.Work(x_start, x_end, [this](const double* x, double t, double* energy) {
+         time_.Work(x_start, x_end, static_cast<int>(accepted_.size()), [this](const double* x, double t, double* energy) {
            return BarrierEnergy(x, t, energy);
          });
 }

@@ -7,7 +7,10 @@
 //   w_U kappa w_i B(d)  (contact/barrier.h)
 // with w_i the weight of the pair's node, edge or face (contact/collision_mesh.h);
 // its friction term (family "friction", contact/friction.h) is
-//   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged.
+//   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged,
+// with mu the pair's obstacle's own coefficient or contact.self_contact_mu
+// (FrictionSettings), kappa for self-contact pairs contact.self_contact_kappa
+// when given.
 //
 // Within a step:
 //  * BeginStep(x_n) collects the candidate pairs: those that can come within
@@ -22,7 +25,9 @@
 //    step, its time is advanced in stages: each solve uses the obstacles at a
 //    time tau, and RefreshTerms moves tau towards t_{n+1} as far as continuous
 //    collision detection against the current solution allows (0.8 of the way
-//    to impact), then solves again. The step is feasible only once tau = t_{n+1}.
+//    to impact), then solves again. The step is feasible only once tau = t_{n+1}
+//    (CheckState: kBoundaryNotReached before). A step whose state is kept
+//    short of it starts the next one there (State::boundary_lag).
 //  * Lagged closest points (edges and faces against sphere centres) are
 //    re-lagged and the step solved again while a lag is more than 1 % farther
 //    than the true closest point, at most 3 times per step.
@@ -70,6 +75,10 @@ class ContactFilter : public StepFilter {
   bool IsStepValid(const double* x) const override;
   double MaxStepSize(const double* from, const double* to) const override;
   bool IsFeasible(const double* x) const override;
+  // Penetration at the obstacles' time, else a moving obstacle short of t_{n+1}.
+  Infeasibility CheckState(const double* x) const override;
+  // The staged obstacles' time (infinity without moving obstacles).
+  double ReachedTime() const override;
   void BeginStep(const double* x_n) override;
   bool RefreshTerms(const double* x) override;
   std::vector<std::string> DiagnosticNames() const override;
@@ -110,6 +119,8 @@ class ContactFilter : public StepFilter {
   double obstacle_time() const { return time_.tau(); }
   const CollisionMesh& mesh() const { return mesh_; }
   const ObstacleList& obstacles() const { return options_.obstacles; }
+  // contact.self_contact_mu (< 0: the friction effect's mu).
+  double self_contact_mu() const { return options_.self_contact_mu; }
   const std::vector<std::unique_ptr<PairSet>>& pair_sets() const { return sets_; }
   int num_barrier_pairs() const;
   int num_friction_contacts() const { return num_friction_contacts_; }
@@ -122,6 +133,9 @@ class ContactFilter : public StepFilter {
   bool ExtendPairs(const CandidateRegion& region);
   void RebuildBarrierTerms();
   double Lag(const double* x);
+  // The coefficients of every pair kind, and whether any is > 0.
+  FrictionSettings Friction() const;
+  bool AnyFriction() const;
   void LagFriction(const double* x, double t);
   void RebuildFrictionTerms();
   // Moves the obstacle time towards t_{n+1} as far as x allows.

@@ -12,6 +12,13 @@
 //                      the initial guess back to a feasible start;
 //   IsFeasible(x)      the state check after every step.
 // Optional hooks (defaults do nothing):
+//   CheckState(x)      the state check with its reason (Infeasibility; default
+//                      from IsFeasible: penetration);
+//   ReachedTime()      the time the filter's moving boundaries (e.g. a staged
+//                      moving obstacle) reached in the step (infinity: none
+//                      lags behind); a step whose state is kept short of the
+//                      step's end time starts the next step from there
+//                      (State::boundary_lag);
 //   BeginStep(x_n)     before the predictor is pulled back, once per step
 //                      (e.g. lag friction normal forces at the step start);
 //   RefreshTerms(x)    after each solve of a step; return true if the filter
@@ -26,6 +33,7 @@
 //                      energy, which the balance scales like those terms.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +47,17 @@ class StepFilter {
   virtual bool IsStepValid(const double* x) const = 0;
   virtual double MaxStepSize(const double* from, const double* to) const = 0;
   virtual bool IsFeasible(const double* x) const = 0;
+
+  // Why a state fails the check after a step.
+  enum class Infeasibility {
+    kNone,
+    kPenetration,         // the state penetrates (or inverts, or tunnels)
+    kBoundaryNotReached,  // free of it, but a moving boundary's staging ran out
+  };
+  virtual Infeasibility CheckState(const double* x) const {
+    return IsFeasible(x) ? Infeasibility::kNone : Infeasibility::kPenetration;
+  }
+  virtual double ReachedTime() const { return std::numeric_limits<double>::infinity(); }
 
   virtual void BeginStep(const double* /*x_n*/) {}
   virtual bool RefreshTerms(const double* /*x*/) { return false; }
