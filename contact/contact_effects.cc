@@ -84,8 +84,7 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
     options.self_contact_kappa = kappa->InRange(0.0, limits::kMaxKappa, "", /*min_open=*/true);
     if (!options.self_contact) kappa->Fail("has no effect without \"self_contact\": true");
     if (!(options.kappa > 0.0)) {
-      kappa->Fail(
-          "needs a fixed \"kappa\" (the adaptive stiffness is one value for every pair)");
+      kappa->Fail("needs a fixed \"kappa\" (the adaptive stiffness is one value for every pair)");
     }
   }
   if (auto mu = p.Find("self_contact_mu")) {
@@ -141,7 +140,8 @@ std::string BuildFriction(TermBuilder& builder, const json& parameters) {
   for (const ObstaclePtr& o : filter->obstacles()) {
     if (o->friction_mu()) out << " (" << o->name() << ": " << *o->friction_mu() << ")";
   }
-  if (filter->self_contact_mu() >= 0.0) out << " (self-contact: " << filter->self_contact_mu() << ")";
+  if (filter->self_contact_mu() >= 0.0)
+    out << " (self-contact: " << filter->self_contact_mu() << ")";
   out << ", epsilon_v " << options.epsilon_v << " m/s, " << options.iterations
       << " lag iteration(s) per step";
   return out.str();

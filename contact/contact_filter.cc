@@ -205,6 +205,53 @@ void ContactFilter::AdvanceObstacles(const double* x) {
   time_.Advance([&](double t_a, double t_b) { return Sweep(x, x, t_a, t_b); });
 }
 
+double ContactFilter::AdvanceObstaclesAlongSecant(const double* x) {
+  has_proposal_ = false;
+  const int n = static_cast<int>(accepted_.size());
+  stage_solutions_.push_back(Eigen::Map<const Eigen::VectorXd>(x, n));
+  stage_times_.push_back(time_.tau());
+  if (stage_solutions_.size() > 2) {
+    stage_solutions_.erase(stage_solutions_.begin());
+    stage_times_.erase(stage_times_.begin());
+  }
+  const double tau0 = time_.tau(), t_next = time_.t_next();
+  AdvanceObstacles(x);
+  if (stage_solutions_.size() < 2 || !(stage_times_[1] > stage_times_[0])) return 0.0;
+  held_tau_ = time_.tau();
+  // x(t) = x + (t - tau0) / (t_next - tau0) (x_ext - x) for the free nodes.
+  const Eigen::Map<const Eigen::VectorXd> x_now(x, n);
+  Eigen::VectorXd direction = ((t_next - tau0) / (stage_times_[1] - stage_times_[0])) *
+                              (stage_solutions_[1] - stage_solutions_[0]);
+  for (int i = 0; i < state_->num_nodes(); ++i) {
+    if (!state_->is_free(i)) direction.segment(dim_ * i, dim_).setZero();
+  }
+  const auto along = [&](double t) -> Eigen::VectorXd {
+    return x_now + ((t - tau0) / (t_next - tau0)) * direction;
+  };
+  double* tau = time_.pointer();
+  *tau = tau0;
+  time_.Advance([&](double t_a, double t_b) {
+    const Eigen::VectorXd a = along(t_a), b = along(t_b);
+    return Sweep(a.data(), b.data(), t_a, t_b);
+  });
+  if (!(time_.tau() > held_tau_)) {
+    *tau = held_tau_;
+    return 0.0;
+  }
+  proposal_ = along(time_.tau());
+  has_proposal_ = true;
+  return (proposal_ - x_now).cwiseAbs().maxCoeff();
+}
+
+bool ContactFilter::ProposeStart(double* x) {
+  if (!has_proposal_) return false;
+  has_proposal_ = false;
+  std::copy(proposal_.data(), proposal_.data() + proposal_.size(), x);
+  return true;
+}
+
+void ContactFilter::StartRejected() { *time_.pointer() = held_tau_; }
+
 void ContactFilter::UpdateKappa(const double* x_n) {
   if (!kappa_.adaptive()) return;
   const int n = static_cast<int>(accepted_.size());
@@ -241,6 +288,9 @@ void ContactFilter::BeginStep(const double* x_n) {
 
   // Candidate pairs for this step: reach from the predictor's displacement.
   for (const auto& set : sets_) set->Clear();
+  stage_solutions_.clear();
+  stage_times_.clear();
+  has_proposal_ = false;
   lags_ = 0;
   const Eigen::VectorXd& x_tilde = context_->x_tilde;
   std::vector<double> reach(mesh_.nodes.size());
@@ -287,16 +337,18 @@ bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
 }
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {
-  return begin_energy_input_ +
-         time_.Work(x_start, x_end, static_cast<int>(accepted_.size()), [this](const double* x, double t, double* energy) {
-           return BarrierEnergy(x, t, energy);
-         });
+  return begin_energy_input_ + time_.Work(x_start, x_end, static_cast<int>(accepted_.size()),
+                                          [this](const double* x, double t, double* energy) {
+                                            return BarrierEnergy(x, t, energy);
+                                          });
 }
 
 bool ContactFilter::RefreshTerms(const double* x) {
   bool changed = false;
+  double moved = 0.0;  // the proposed start's largest coordinate change
+  has_proposal_ = false;
   if (!time_.reached_end()) {
-    AdvanceObstacles(x);
+    moved = AdvanceObstaclesAlongSecant(x);
     changed = true;
   }
   // Pairs within d_hat of the solution that the set missed (with margin d_hat).
@@ -308,9 +360,9 @@ bool ContactFilter::RefreshTerms(const double* x) {
     }
   }
   if (missing || changed) {
-    const std::vector<double> reach(mesh_.nodes.size(), options_.d_hat);
+    const std::vector<double> reach(mesh_.nodes.size(), options_.d_hat + 2.0 * moved);
     const std::vector<double> travel = time_.Travel();
-    if (ExtendPairs(CandidateRegion{x, x, &reach, options_.d_hat, &travel})) {
+    if (ExtendPairs(CandidateRegion{x, x, &reach, options_.d_hat + 2.0 * moved, &travel})) {
       RebuildBarrierTerms();
       changed = true;
     }

@@ -81,6 +81,12 @@ class ContactFilter : public StepFilter {
   double ReachedTime() const override;
   void BeginStep(const double* x_n) override;
   bool RefreshTerms(const double* x) override;
+  // From the third stage of a moving obstacle on: the free nodes moved along
+  // by the secant through the last two stages' solutions (extrapolated to
+  // t_{n+1}), when that path lets the obstacles advance farther than with the
+  // nodes held.
+  bool ProposeStart(double* x) override;
+  void StartRejected() override;
   std::vector<std::string> DiagnosticNames() const override;
   // min_distance [m], active_contacts, broad_phase_ms (the pair kinds' broad
   // phase since the step, or its last substep, began: PairSet::BroadPhaseSeconds).
@@ -140,6 +146,9 @@ class ContactFilter : public StepFilter {
   void RebuildFrictionTerms();
   // Moves the obstacle time towards t_{n+1} as far as x allows.
   void AdvanceObstacles(const double* x);
+  // The same along the secant of the stages' solutions, from the third stage
+  // on (sets proposal_ when it gets farther); returns the extra reach [m].
+  double AdvanceObstaclesAlongSecant(const double* x);
   void UpdateKappa(const double* x_n);
 
   IncrementalPotential* potential_;
@@ -156,6 +165,13 @@ class ContactFilter : public StepFilter {
   double broad_phase_at_begin_ = 0.0;  // BroadPhaseSeconds() at BeginStep [s]
   Eigen::VectorXd accepted_;
   int lags_ = 0;  // closest-point re-lags this step
+  // Moving obstacles' stages this step: the last two solutions and times,
+  // the proposed start and the obstacle time without it.
+  std::vector<Eigen::VectorXd> stage_solutions_;
+  std::vector<double> stage_times_;
+  Eigen::VectorXd proposal_;
+  bool has_proposal_ = false;
+  double held_tau_ = 0.0;
 
   std::vector<std::unique_ptr<PairSet>> sets_;
 

@@ -32,7 +32,7 @@ struct PrimitiveObstacleFrictionLag {
   std::array<double, 3> alpha{};
   Eigen::Matrix<double, 3, 2> tangents;
   Eigen::Vector3d obstacle_velocity = Eigen::Vector3d::Zero();  // at the lag's time
-  double normal_force = 0.0;                                     // lambda [N]
+  double normal_force = 0.0;                                    // lambda [N]
   const Obstacle* obstacle = nullptr;  // its friction coefficient (FrictionSettings)
 };
 

@@ -25,6 +25,11 @@
 //                      changed the potential's terms (e.g. the contact set grew
 //                      or friction was re-lagged): the step is solved again from x;
 //   Diagnostics        named per-step values for the --stats CSV (NaN: empty);
+//   ProposeStart(x)    after RefreshTerms: a start for the next solve that the
+//                      filter's staging moved the free nodes to (written to x;
+//                      true if proposed); the simulation takes it when every
+//                      other filter accepts the path from the solution to it,
+//                      else calls StartRejected (the filter stages without it);
 //   PrescribedWork     energy the filter's own prescribed motions (e.g. moving
 //                      obstacles) put into the potential over the step from
 //                      x_start at the step's start time to x_end at its end,
@@ -61,6 +66,8 @@ class StepFilter {
 
   virtual void BeginStep(const double* /*x_n*/) {}
   virtual bool RefreshTerms(const double* /*x*/) { return false; }
+  virtual bool ProposeStart(double* /*x*/) { return false; }
+  virtual void StartRejected() {}
   virtual std::vector<std::string> DiagnosticNames() const { return {}; }
   // Values in the order of DiagnosticNames(), at state positions x.
   virtual std::vector<double> Diagnostics(const double* /*x*/) const { return {}; }

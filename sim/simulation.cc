@@ -210,6 +210,7 @@ bool Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
     bool refreshed = false;
     for (const auto& filter : potential_->step_filters())
       refreshed |= filter->RefreshTerms(x->data());
+    TakeProposedStart(x);
     if (staging && !staging->reached()) {
       if (!staging->Next(*potential_, x)) break;
       refreshed = true;
@@ -227,6 +228,31 @@ bool Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
     return false;
   }
   return true;
+}
+
+void Simulation::TakeProposedStart(Eigen::VectorXd* x) {
+  const auto& filters = potential_->step_filters();
+  for (size_t k = 0; k < filters.size(); ++k) {
+    Eigen::VectorXd proposal = *x;
+    if (!filters[k]->ProposeStart(proposal.data())) continue;
+    bool accepted = proposal.allFinite();
+    for (size_t j = 0; j < filters.size() && accepted; ++j) {
+      if (j == k) continue;
+      filters[j]->OnAccepted(x->data());
+      accepted = filters[j]->IsStepValid(proposal.data());
+    }
+    // The terms must be defined there too (a gap at the barrier's margin is not).
+    double energy = 0.0;
+    if (accepted) {
+      potential_->NotifyAccepted(proposal.data());
+      accepted = potential_->Evaluate(proposal.data(), &energy, nullptr);
+    }
+    if (accepted) {
+      *x = proposal;
+    } else {
+      filters[k]->StartRejected();
+    }
+  }
 }
 
 bool Simulation::ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const {
@@ -408,8 +434,9 @@ void Simulation::Advance(double h, StepReport* report) {
       state_.boundary_lag = start.boundary_lag + h;
       potential_->NotifyAccepted(state_.x.data());
     } else if (found == StepFilter::Infeasibility::kBoundaryNotReached && boundary_reached) {
-      report->status = "moving boundary not reached: a moving obstacle's staging ran out" +
-                       (report->converged ? std::string() : " (last solve: " + report->status + ")");
+      report->status =
+          "moving boundary not reached: a moving obstacle's staging ran out" +
+          (report->converged ? std::string() : " (last solve: " + report->status + ")");
       report->converged = false;
     }
     if (variational && found != StepFilter::Infeasibility::kPenetration) {

@@ -153,6 +153,9 @@ class Simulation {
   // Returns false when the prescribed nodes in x are short of their targets
   // (a step whose staging ran out: sim/prescribed_staging.h).
   bool SolveStep(double h, Eigen::VectorXd* x, StepReport* report);
+  // A start a filter's staging proposes after its refresh (StepFilter::
+  // ProposeStart), taken into x when every other filter accepts it.
+  void TakeProposedStart(Eigen::VectorXd* x);
 
   Scene scene_;
   SimulationOptions options_;
