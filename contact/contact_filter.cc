@@ -216,7 +216,11 @@ double ContactFilter::AdvanceObstaclesAlongSecant(const double* x) {
   }
   const double tau0 = time_.tau(), t_next = time_.t_next();
   AdvanceObstacles(x);
-  if (stage_solutions_.size() < 2 || !(stage_times_[1] > stage_times_[0])) return 0.0;
+  ++stages_;
+  if (stages_ < kSecantFromStage || stage_solutions_.size() < 2 ||
+      !(stage_times_[1] > stage_times_[0])) {
+    return 0.0;
+  }
   held_tau_ = time_.tau();
   // x(t) = x + (t - tau0) / (t_next - tau0) (x_ext - x) for the free nodes.
   const Eigen::Map<const Eigen::VectorXd> x_now(x, n);
@@ -290,6 +294,7 @@ void ContactFilter::BeginStep(const double* x_n) {
   for (const auto& set : sets_) set->Clear();
   stage_solutions_.clear();
   stage_times_.clear();
+  stages_ = 0;
   has_proposal_ = false;
   lags_ = 0;
   const Eigen::VectorXd& x_tilde = context_->x_tilde;

@@ -81,11 +81,14 @@ class ContactFilter : public StepFilter {
   double ReachedTime() const override;
   void BeginStep(const double* x_n) override;
   bool RefreshTerms(const double* x) override;
-  // From the third stage of a moving obstacle on: the free nodes moved along
+  // From the kSecantFromStage-th staged solve of a step on: the free nodes moved along
   // by the secant through the last two stages' solutions (extrapolated to
   // t_{n+1}), when that path lets the obstacles advance farther than with the
   // nodes held.
   bool ProposeStart(double* x) override;
+  // The secant starts at this many staged solutions: the steps that the plain
+  // stages finish in fewer solves keep them (their iterations unchanged).
+  static constexpr int kSecantFromStage = 25;
   void StartRejected() override;
   std::vector<std::string> DiagnosticNames() const override;
   // min_distance [m], active_contacts, broad_phase_ms (the pair kinds' broad
@@ -172,6 +175,7 @@ class ContactFilter : public StepFilter {
   Eigen::VectorXd proposal_;
   bool has_proposal_ = false;
   double held_tau_ = 0.0;
+  int stages_ = 0;  // solutions of this step at a staged obstacle time
 
   std::vector<std::unique_ptr<PairSet>> sets_;
 

@@ -1,6 +1,6 @@
 #include "sim/prescribed_staging.h"
 
-#include <algorithm>
+#include <cmath>
 
 namespace ipstep {
 
@@ -17,10 +17,11 @@ PrescribedStaging::PrescribedStaging(const State& state, const Eigen::VectorXd& 
   if (prescribed_.empty()) lambda_ = 1.0;
 }
 
-bool PrescribedStaging::Next(const IncrementalPotential& potential, Eigen::VectorXd* x) {
+bool PrescribedStaging::Next(const IncrementalPotential& potential, Eigen::VectorXd* x,
+                             const Eigen::VectorXd* solution) {
   if (reached()) return true;
   if (stages_ > 0) {
-    solutions_.push_back(*x);
+    solutions_.push_back(solution ? *solution : *x);
     progress_.push_back(lambda_);
     if (solutions_.size() > 2) {
       solutions_.erase(solutions_.begin());
@@ -35,6 +36,9 @@ bool PrescribedStaging::Next(const IncrementalPotential& potential, Eigen::Vecto
   if (solutions_.size() == 2 && progress_[1] > progress_[0]) {
     const double ratio = (1.0 - progress_[1]) / (progress_[1] - progress_[0]);
     Eigen::VectorXd secant = *x + ratio * (solutions_[1] - solutions_[0]);
+    for (int c = 0; c < secant.size(); ++c) {
+      if (!std::isfinite(secant[c])) secant[c] = (*x)[c];
+    }
     for (int c : prescribed_) secant[c] = target_[c];
     paths.insert(paths.begin(), secant);
   }

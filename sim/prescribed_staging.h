@@ -31,8 +31,11 @@ class PrescribedStaging {
 
   // Moves x, the solution at the current progress (x_n before the first
   // stage), to the start of the next stage; false when no stage can advance
-  // (the first impact is at the start of both paths).
-  bool Next(const IncrementalPotential& potential, Eigen::VectorXd* x);
+  // (the first impact is at the start of both paths). `solution`, when not
+  // null, is the last stage's solution for the secant if x was moved since
+  // (a moving obstacle's staged start, ContactFilter::ProposeStart).
+  bool Next(const IncrementalPotential& potential, Eigen::VectorXd* x,
+            const Eigen::VectorXd* solution = nullptr);
   bool reached() const { return lambda_ >= 1.0; }
   double progress() const { return lambda_; }
   int stages() const { return stages_; }

@@ -210,9 +210,10 @@ bool Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
     bool refreshed = false;
     for (const auto& filter : potential_->step_filters())
       refreshed |= filter->RefreshTerms(x->data());
+    const Eigen::VectorXd solution = staging ? *x : Eigen::VectorXd();
     TakeProposedStart(x);
     if (staging && !staging->reached()) {
-      if (!staging->Next(*potential_, x)) break;
+      if (!staging->Next(*potential_, x, &solution)) break;
       refreshed = true;
     }
     if (!refreshed) break;
