@@ -47,7 +47,8 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
                      "\"obstacles\" or \"self_contact\")");
   }
   const JsonNode p(parameters, "contact", source);
-  p.ExpectObject({"dhat", "kappa", "obstacles", "self_contact"});
+  p.ExpectObject(
+      {"dhat", "kappa", "obstacles", "self_contact", "self_contact_kappa", "self_contact_mu"});
   ContactOptions options;
   const double diagonal = BoundingBoxDiagonal(scene);
   options.d_hat = p.Has("dhat") ? p.Get("dhat").InRange(limits::kMinDhat, limits::kMaxDhat, "m")
@@ -56,10 +57,17 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
     options.kappa = p.Get("kappa").InRange(0.0, limits::kMaxKappa, "", /*min_open=*/true,
                                            " (omit it for the adaptive stiffness)");
   }
+  // Friction coefficients act through the friction effect (its epsilon_v).
+  const auto needs_friction = [&](const JsonNode& key) {
+    if (!scene.HasEffect("friction")) {
+      key.Fail("a friction coefficient needs the \"friction\" effect in \"effects\"");
+    }
+  };
   if (p.Has("obstacles")) {
     for (const JsonNode& element : p.Get("obstacles").Elements()) {
       if (!element.Has("type")) element.Get("type");
       options.obstacles.push_back(ReadObstacle(element, dim));
+      if (element.Has("mu")) needs_friction(element.Get("mu"));
     }
   }
   if (p.Has("self_contact")) {
@@ -71,6 +79,18 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
               "a "
               "3D grid with structural springs)");
     }
+  }
+  if (auto kappa = p.Find("self_contact_kappa")) {
+    options.self_contact_kappa = kappa->InRange(0.0, limits::kMaxKappa, "", /*min_open=*/true);
+    if (!options.self_contact) kappa->Fail("has no effect without \"self_contact\": true");
+    if (!(options.kappa > 0.0)) {
+      kappa->Fail("needs a fixed \"kappa\" (the adaptive stiffness is one value for every pair)");
+    }
+  }
+  if (auto mu = p.Find("self_contact_mu")) {
+    options.self_contact_mu = mu->InRange(0.0, limits::kMaxFrictionMu, "");
+    if (!options.self_contact) mu->Fail("has no effect without \"self_contact\": true");
+    needs_friction(*mu);
   }
   if (options.obstacles.empty() && !options.self_contact) {
     throw InputError(source, "contact",
@@ -116,8 +136,14 @@ std::string BuildFriction(TermBuilder& builder, const json& parameters) {
   }
   filter->EnableFriction(options);
   std::ostringstream out;
-  out << "friction: mu " << options.mu << ", epsilon_v " << options.epsilon_v << " m/s, "
-      << options.iterations << " lag iteration(s) per step";
+  out << "friction: mu " << options.mu;
+  for (const ObstaclePtr& o : filter->obstacles()) {
+    if (o->friction_mu()) out << " (" << o->name() << ": " << *o->friction_mu() << ")";
+  }
+  if (filter->self_contact_mu() >= 0.0)
+    out << " (self-contact: " << filter->self_contact_mu() << ")";
+  out << ", epsilon_v " << options.epsilon_v << " m/s, " << options.iterations
+      << " lag iteration(s) per step";
   return out.str();
 }
 

@@ -57,7 +57,8 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
   c.step = context_;
   c.barrier_family = kContactFamily;
   c.friction_family = kFrictionFamily;
-  sets_ = MakePairSets(c, options_.self_contact, state->x.data());
+  sets_ = MakePairSets(c, options_.self_contact, state->x.data(),
+                       options_.self_contact_kappa > 0.0 ? &options_.self_contact_kappa : nullptr);
 }
 
 void ContactFilter::EnableFriction(const FrictionOptions& options) {
@@ -79,6 +80,9 @@ std::string ContactFilter::Summary() const {
   out << ", d_hat " << options_.d_hat << ", kappa ";
   out << (kappa_.adaptive() ? "adaptive from " : "")
       << (kappa_.adaptive() ? kappa_.min() : kappa_.value());
+  if (options_.self_contact && options_.self_contact_kappa > 0.0) {
+    out << ", self-contact kappa " << options_.self_contact_kappa;
+  }
   return out.str();
 }
 
@@ -114,8 +118,18 @@ double ContactFilter::MaxStepSize(const double* from, const double* to) const {
 }
 
 bool ContactFilter::IsFeasible(const double* x) const {
+  return CheckState(x) == Infeasibility::kNone;
+}
+
+StepFilter::Infeasibility ContactFilter::CheckState(const double* x) const {
+  if (!FindPenetration(x, time_.tau()).empty()) return Infeasibility::kPenetration;
   // A moving obstacle that did not reach its position leaves the step infeasible.
-  return time_.reached_end() && FindPenetration(x, time_.tau()).empty();
+  if (!time_.reached_end()) return Infeasibility::kBoundaryNotReached;
+  return Infeasibility::kNone;
+}
+
+double ContactFilter::ReachedTime() const {
+  return time_.has_moving_obstacles() ? time_.tau() : kInfinity;
 }
 
 void ContactFilter::Near(const double* x, double reach, double* min_distance, int* count) const {
@@ -160,8 +174,20 @@ double ContactFilter::Lag(const double* x) {
   return excess;
 }
 
+FrictionSettings ContactFilter::Friction() const {
+  return FrictionSettings{friction_.mu, friction_.epsilon_v, options_.self_contact_mu};
+}
+
+bool ContactFilter::AnyFriction() const {
+  if (!friction_enabled_) return false;
+  const FrictionSettings settings = Friction();
+  bool any = options_.self_contact && settings.ForSelf() > 0.0;
+  for (const ObstaclePtr& o : options_.obstacles) any |= settings.ForObstacle(*o) > 0.0;
+  return any;
+}
+
 void ContactFilter::LagFriction(const double* x, double t) {
-  if (!friction_enabled_ || !(friction_.mu > 0.0)) return;
+  if (!AnyFriction()) return;
   for (const auto& set : sets_) set->LagFriction(x, t);
 }
 
@@ -169,8 +195,8 @@ void ContactFilter::RebuildFrictionTerms() {
   if (!friction_enabled_) return;
   potential_->RemoveTerms(kFrictionFamily);
   num_friction_contacts_ = 0;
-  if (!(friction_.mu > 0.0)) return;
-  const FrictionSettings settings{friction_.mu, friction_.epsilon_v};
+  if (!AnyFriction()) return;
+  const FrictionSettings settings = Friction();
   for (const auto& set : sets_)
     num_friction_contacts_ += set->AddFrictionTerms(settings, potential_);
 }
@@ -178,6 +204,57 @@ void ContactFilter::RebuildFrictionTerms() {
 void ContactFilter::AdvanceObstacles(const double* x) {
   time_.Advance([&](double t_a, double t_b) { return Sweep(x, x, t_a, t_b); });
 }
+
+double ContactFilter::AdvanceObstaclesAlongSecant(const double* x) {
+  has_proposal_ = false;
+  const int n = static_cast<int>(accepted_.size());
+  stage_solutions_.push_back(Eigen::Map<const Eigen::VectorXd>(x, n));
+  stage_times_.push_back(time_.tau());
+  if (stage_solutions_.size() > 2) {
+    stage_solutions_.erase(stage_solutions_.begin());
+    stage_times_.erase(stage_times_.begin());
+  }
+  const double tau0 = time_.tau(), t_next = time_.t_next();
+  AdvanceObstacles(x);
+  ++stages_;
+  if (stages_ < kSecantFromStage || stage_solutions_.size() < 2 ||
+      !(stage_times_[1] > stage_times_[0])) {
+    return 0.0;
+  }
+  held_tau_ = time_.tau();
+  // x(t) = x + (t - tau0) / (t_next - tau0) (x_ext - x) for the free nodes.
+  const Eigen::Map<const Eigen::VectorXd> x_now(x, n);
+  Eigen::VectorXd direction = ((t_next - tau0) / (stage_times_[1] - stage_times_[0])) *
+                              (stage_solutions_[1] - stage_solutions_[0]);
+  for (int i = 0; i < state_->num_nodes(); ++i) {
+    if (!state_->is_free(i)) direction.segment(dim_ * i, dim_).setZero();
+  }
+  const auto along = [&](double t) -> Eigen::VectorXd {
+    return x_now + ((t - tau0) / (t_next - tau0)) * direction;
+  };
+  double* tau = time_.pointer();
+  *tau = tau0;
+  time_.Advance([&](double t_a, double t_b) {
+    const Eigen::VectorXd a = along(t_a), b = along(t_b);
+    return Sweep(a.data(), b.data(), t_a, t_b);
+  });
+  if (!(time_.tau() > held_tau_)) {
+    *tau = held_tau_;
+    return 0.0;
+  }
+  proposal_ = along(time_.tau());
+  has_proposal_ = true;
+  return (proposal_ - x_now).cwiseAbs().maxCoeff();
+}
+
+bool ContactFilter::ProposeStart(double* x) {
+  if (!has_proposal_) return false;
+  has_proposal_ = false;
+  std::copy(proposal_.data(), proposal_.data() + proposal_.size(), x);
+  return true;
+}
+
+void ContactFilter::StartRejected() { *time_.pointer() = held_tau_; }
 
 void ContactFilter::UpdateKappa(const double* x_n) {
   if (!kappa_.adaptive()) return;
@@ -204,7 +281,7 @@ void ContactFilter::UpdateKappa(const double* x_n) {
 
 void ContactFilter::BeginStep(const double* x_n) {
   broad_phase_at_begin_ = BroadPhaseSeconds();
-  time_.BeginStep(state_->time, context_->time_step);
+  time_.BeginStep(state_->time, context_->time_step, state_->boundary_lag);
   const double t_n = time_.t_n();
   // The barrier energy at x_n before and after this step's stiffness and pairs
   // (for the energy balance: PrescribedWork).
@@ -215,6 +292,10 @@ void ContactFilter::BeginStep(const double* x_n) {
 
   // Candidate pairs for this step: reach from the predictor's displacement.
   for (const auto& set : sets_) set->Clear();
+  stage_solutions_.clear();
+  stage_times_.clear();
+  stages_ = 0;
+  has_proposal_ = false;
   lags_ = 0;
   const Eigen::VectorXd& x_tilde = context_->x_tilde;
   std::vector<double> reach(mesh_.nodes.size());
@@ -261,16 +342,18 @@ bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
 }
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {
-  return begin_energy_input_ +
-         time_.Work(x_start, x_end, [this](const double* x, double t, double* energy) {
-           return BarrierEnergy(x, t, energy);
-         });
+  return begin_energy_input_ + time_.Work(x_start, x_end, static_cast<int>(accepted_.size()),
+                                          [this](const double* x, double t, double* energy) {
+                                            return BarrierEnergy(x, t, energy);
+                                          });
 }
 
 bool ContactFilter::RefreshTerms(const double* x) {
   bool changed = false;
+  double moved = 0.0;  // the proposed start's largest coordinate change
+  has_proposal_ = false;
   if (!time_.reached_end()) {
-    AdvanceObstacles(x);
+    moved = AdvanceObstaclesAlongSecant(x);
     changed = true;
   }
   // Pairs within d_hat of the solution that the set missed (with margin d_hat).
@@ -282,9 +365,9 @@ bool ContactFilter::RefreshTerms(const double* x) {
     }
   }
   if (missing || changed) {
-    const std::vector<double> reach(mesh_.nodes.size(), options_.d_hat);
+    const std::vector<double> reach(mesh_.nodes.size(), options_.d_hat + 2.0 * moved);
     const std::vector<double> travel = time_.Travel();
-    if (ExtendPairs(CandidateRegion{x, x, &reach, options_.d_hat, &travel})) {
+    if (ExtendPairs(CandidateRegion{x, x, &reach, options_.d_hat + 2.0 * moved, &travel})) {
       RebuildBarrierTerms();
       changed = true;
     }

@@ -7,7 +7,10 @@
 //   w_U kappa w_i B(d)  (contact/barrier.h)
 // with w_i the weight of the pair's node, edge or face (contact/collision_mesh.h);
 // its friction term (family "friction", contact/friction.h) is
-//   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged.
+//   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged,
+// with mu the pair's obstacle's own coefficient or contact.self_contact_mu
+// (FrictionSettings), kappa for self-contact pairs contact.self_contact_kappa
+// when given.
 //
 // Within a step:
 //  * BeginStep(x_n) collects the candidate pairs: those that can come within
@@ -22,7 +25,9 @@
 //    step, its time is advanced in stages: each solve uses the obstacles at a
 //    time tau, and RefreshTerms moves tau towards t_{n+1} as far as continuous
 //    collision detection against the current solution allows (0.8 of the way
-//    to impact), then solves again. The step is feasible only once tau = t_{n+1}.
+//    to impact), then solves again. The step is feasible only once tau = t_{n+1}
+//    (CheckState: kBoundaryNotReached before). A step whose state is kept
+//    short of it starts the next one there (State::boundary_lag).
 //  * Lagged closest points (edges and faces against sphere centres) are
 //    re-lagged and the step solved again while a lag is more than 1 % farther
 //    than the true closest point, at most 3 times per step.
@@ -70,8 +75,21 @@ class ContactFilter : public StepFilter {
   bool IsStepValid(const double* x) const override;
   double MaxStepSize(const double* from, const double* to) const override;
   bool IsFeasible(const double* x) const override;
+  // Penetration at the obstacles' time, else a moving obstacle short of t_{n+1}.
+  Infeasibility CheckState(const double* x) const override;
+  // The staged obstacles' time (infinity without moving obstacles).
+  double ReachedTime() const override;
   void BeginStep(const double* x_n) override;
   bool RefreshTerms(const double* x) override;
+  // From the kSecantFromStage-th staged solve of a step on: the free nodes moved along
+  // by the secant through the last two stages' solutions (extrapolated to
+  // t_{n+1}), when that path lets the obstacles advance farther than with the
+  // nodes held.
+  bool ProposeStart(double* x) override;
+  // The secant starts at this many staged solutions: the steps that the plain
+  // stages finish in fewer solves keep them (their iterations unchanged).
+  static constexpr int kSecantFromStage = 25;
+  void StartRejected() override;
   std::vector<std::string> DiagnosticNames() const override;
   // min_distance [m], active_contacts, broad_phase_ms (the pair kinds' broad
   // phase since the step, or its last substep, began: PairSet::BroadPhaseSeconds).
@@ -110,6 +128,8 @@ class ContactFilter : public StepFilter {
   double obstacle_time() const { return time_.tau(); }
   const CollisionMesh& mesh() const { return mesh_; }
   const ObstacleList& obstacles() const { return options_.obstacles; }
+  // contact.self_contact_mu (< 0: the friction effect's mu).
+  double self_contact_mu() const { return options_.self_contact_mu; }
   const std::vector<std::unique_ptr<PairSet>>& pair_sets() const { return sets_; }
   int num_barrier_pairs() const;
   int num_friction_contacts() const { return num_friction_contacts_; }
@@ -122,10 +142,16 @@ class ContactFilter : public StepFilter {
   bool ExtendPairs(const CandidateRegion& region);
   void RebuildBarrierTerms();
   double Lag(const double* x);
+  // The coefficients of every pair kind, and whether any is > 0.
+  FrictionSettings Friction() const;
+  bool AnyFriction() const;
   void LagFriction(const double* x, double t);
   void RebuildFrictionTerms();
   // Moves the obstacle time towards t_{n+1} as far as x allows.
   void AdvanceObstacles(const double* x);
+  // The same along the secant of the stages' solutions, from the third stage
+  // on (sets proposal_ when it gets farther); returns the extra reach [m].
+  double AdvanceObstaclesAlongSecant(const double* x);
   void UpdateKappa(const double* x_n);
 
   IncrementalPotential* potential_;
@@ -142,6 +168,14 @@ class ContactFilter : public StepFilter {
   double broad_phase_at_begin_ = 0.0;  // BroadPhaseSeconds() at BeginStep [s]
   Eigen::VectorXd accepted_;
   int lags_ = 0;  // closest-point re-lags this step
+  // Moving obstacles' stages this step: the last two solutions and times,
+  // the proposed start and the obstacle time without it.
+  std::vector<Eigen::VectorXd> stage_solutions_;
+  std::vector<double> stage_times_;
+  Eigen::VectorXd proposal_;
+  bool has_proposal_ = false;
+  double held_tau_ = 0.0;
+  int stages_ = 0;  // solutions of this step at a staged obstacle time
 
   std::vector<std::unique_ptr<PairSet>> sets_;
 

@@ -16,7 +16,9 @@
 namespace ipstep {
 
 Obstacle::Obstacle(int dimension, const Eigen::Vector3d& velocity, std::string name)
-    : dimension_(dimension), velocity_(velocity), name_(std::move(name)) {}
+    : dimension_(dimension), name_(std::move(name)) {
+  motion_.velocity = velocity;
+}
 
 double PointSegmentDistance(const Eigen::Vector3d& c, const Eigen::Vector3d& a,
                             const Eigen::Vector3d& b, double* alpha) {

@@ -1,23 +1,30 @@
 // Rigid obstacles for contact: the interface every shape implements
 // (contact/obstacles/: plane, sphere / circle, axis-aligned box), in 2D or 3D,
-// static or translating with a constant velocity: the obstacle at time t is
-// its shape at rest shifted by velocity * t.
+// static or translating with a constant velocity until an optional stop time:
+// the obstacle at time t is its shape at rest shifted by velocity * min(t,
+// until), the motion law of moving nodes (core/prescribed_motion.h) without
+// rotation.
 //
 // The translation is handled here, once: every query at time t maps its
 // points into the obstacle's frame at rest (y = x - velocity t) or its rest
 // features out of it (+ velocity t), and the shapes only answer at rest
 // (the protected Rest* methods). Continuous collision detection works in that
 // frame: a point moving linearly while the obstacle translates linearly moves
-// linearly relative to it.
+// linearly relative to it. The shift is linear in time on either side of the
+// stop time, so a time interval [t_a, t_b] passed to the impact queries must
+// not contain it in its interior (contact/obstacle_time.h splits there).
 //
 // Distances are signed (negative inside the obstacle).
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "core/prescribed_motion.h"
 
 namespace ipstep {
 
@@ -35,11 +42,23 @@ class Obstacle {
   virtual void Accept(ObstacleVisitor& visitor) const = 0;
 
   int dimension() const { return dimension_; }
-  const Eigen::Vector3d& velocity() const { return velocity_; }
+  // The velocity while it moves (before until()).
+  const Eigen::Vector3d& velocity() const { return motion_.velocity; }
+  // The time it stops at [s] (infinity: never).
+  double until() const { return motion_.until; }
+  // Sets the stop time (> 0), before the obstacle is shared.
+  void set_until(double until) { motion_.until = until; }
   const std::string& name() const { return name_; }  // e.g. "contact.obstacles[0]"
-  bool is_moving() const { return velocity_.squaredNorm() > 0.0; }
-  // The obstacle's displacement at time t: velocity * t.
-  Eigen::Vector3d Shift(double t) const { return velocity_ * t; }
+  // Its own friction coefficient (scene key "mu"); none: the friction effect's.
+  const std::optional<double>& friction_mu() const { return friction_mu_; }
+  void set_friction_mu(double mu) { friction_mu_ = mu; }
+  bool is_moving() const { return !motion_.is_still(); }
+  // The velocity at time t: velocity() before until(), zero from then on.
+  Eigen::Vector3d VelocityAt(double t) const {
+    return motion_.Velocity(Eigen::Vector3d::Zero(), t);
+  }
+  // The obstacle's displacement at time t: velocity * min(t, until).
+  Eigen::Vector3d Shift(double t) const { return motion_.Position(Eigen::Vector3d::Zero(), t); }
 
   // Signed distance of point x (dimension components used) at time t; the unit
   // gradient with respect to x when `gradient` is not null.
@@ -194,7 +213,8 @@ class Obstacle {
 
  private:
   int dimension_;
-  Eigen::Vector3d velocity_;
+  PrescribedMotion motion_;  // translation only: velocity and until
+  std::optional<double> friction_mu_;
   std::string name_;
 };
 

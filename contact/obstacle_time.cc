@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <Eigen/Core>
+
 namespace ipstep {
 
 ObstacleTime::ObstacleTime(const ObstacleList* obstacles, double t0)
@@ -9,10 +11,18 @@ ObstacleTime::ObstacleTime(const ObstacleList* obstacles, double t0)
   for (const ObstaclePtr& o : *obstacles_) has_moving_ |= o->is_moving();
 }
 
-void ObstacleTime::BeginStep(double t_n, double h) {
-  t_n_ = t_n;
+void ObstacleTime::BeginStep(double t_n, double h, double lag) {
+  t_n_ = t_n - std::max(0.0, lag);
   t_next_ = t_n + h;
-  tau_ = t_n;
+  tau_ = t_n_;
+}
+
+double ObstacleTime::NextStop(double t) const {
+  double stop = t_next_;
+  for (const ObstaclePtr& o : *obstacles_) {
+    if (o->is_moving() && o->until() > t && o->until() < stop) stop = o->until();
+  }
+  return stop;
 }
 
 void ObstacleTime::Advance(const std::function<double(double, double)>& first_impact) {
@@ -20,11 +30,17 @@ void ObstacleTime::Advance(const std::function<double(double, double)>& first_im
     tau_ = t_next_;
     return;
   }
-  const double first = first_impact(tau_, t_next_);
-  if (first > 1.0) {
-    tau_ = t_next_;
-  } else {
-    tau_ += kAdvanceFraction * first * (t_next_ - tau_);
+  // Piece by piece between the obstacles' stop times, where every shift is
+  // linear in time (contact/obstacle.h).
+  while (tau_ < t_next_) {
+    const double end = NextStop(tau_);
+    const double first = first_impact(tau_, end);
+    if (first > 1.0) {
+      tau_ = end;
+    } else {
+      tau_ += kAdvanceFraction * first * (end - tau_);
+      return;
+    }
   }
 }
 
@@ -32,13 +48,13 @@ std::vector<double> ObstacleTime::Travel() const {
   std::vector<double> travel;
   for (const ObstaclePtr& o_ptr : *obstacles_) {
     const Obstacle& o = *o_ptr;
-    travel.push_back(o.velocity().norm() * std::max(0.0, t_next_ - tau_));
+    travel.push_back(tau_ < t_next_ ? (o.Shift(t_next_) - o.Shift(tau_)).norm() : 0.0);
   }
   return travel;
 }
 
 double ObstacleTime::Work(
-    const double* x_start, const double* x_end,
+    const double* x_start, const double* x_end, int size,
     const std::function<bool(const double*, double, double*)>& barrier_energy) const {
   if (!has_moving_ || !(t_next_ > t_n_)) return 0.0;
   const double h = t_next_ - t_n_, delta = 1e-6 * h;
@@ -48,6 +64,34 @@ double ObstacleTime::Work(
     *value = (up - down) / (2.0 * delta);
     return true;
   };
+  if (NextStop(t_n_) < t_next_) {
+    // An obstacle stops within the step: the rule piece by piece between the
+    // stop times (one-sided differences inside each piece), the positions
+    // interpolated linearly.
+    Eigen::VectorXd x(size);
+    const auto at = [&](double t) {
+      const double s = (t - t_n_) / h;
+      for (int k = 0; k < size; ++k) x[k] = x_start[k] + s * (x_end[k] - x_start[k]);
+      return x.data();
+    };
+    const auto one_sided = [&](double t, double dt, double* value) {
+      double here = 0.0, there = 0.0;
+      const double* xt = at(t);
+      if (!barrier_energy(xt, t, &here) || !barrier_energy(xt, t + dt, &there)) return false;
+      *value = (there - here) / dt;
+      return true;
+    };
+    double work = 0.0;
+    for (double a = t_n_; a < t_next_;) {
+      const double b = NextStop(a);
+      double r_a = 0.0, r_b = 0.0;
+      const bool a_ok = one_sided(a, delta, &r_a), b_ok = one_sided(b, -delta, &r_b);
+      if (a_ok && b_ok) work += 0.5 * (b - a) * (r_a + r_b);
+      if (a_ok != b_ok) work += (b - a) * (a_ok ? r_a : r_b);
+      a = b;
+    }
+    return work;
+  }
   double at_start = 0.0, at_end = 0.0;
   const bool start_ok = rate(x_start, t_n_, &at_start);
   const bool end_ok = rate(x_end, t_next_, &at_end);

@@ -10,15 +10,18 @@
 namespace ipstep {
 
 std::vector<std::unique_ptr<PairSet>> MakePairSets(const PairSetContext& context, bool self_contact,
-                                                   const double* initial) {
+                                                   const double* initial,
+                                                   const double* self_kappa) {
   std::vector<std::unique_ptr<PairSet>> sets;
+  PairSetContext self = context;
+  if (self_kappa != nullptr) self.kappa = self_kappa;
   sets.push_back(std::make_unique<NodeObstaclePairs>(context));
   sets.push_back(std::make_unique<EdgeObstaclePairs>(context));
   sets.push_back(std::make_unique<MeshObstaclePairs>(context));
   if (self_contact) {
-    if (context.dimension == 2) sets.push_back(std::make_unique<PointEdgePairs>(context, initial));
-    if (context.dimension == 3) sets.push_back(std::make_unique<PointTrianglePairs>(context));
-    if (context.dimension == 3) sets.push_back(std::make_unique<EdgeEdgePairs>(context, initial));
+    if (self.dimension == 2) sets.push_back(std::make_unique<PointEdgePairs>(self, initial));
+    if (self.dimension == 3) sets.push_back(std::make_unique<PointTrianglePairs>(self));
+    if (self.dimension == 3) sets.push_back(std::make_unique<EdgeEdgePairs>(self, initial));
   }
   return sets;
 }

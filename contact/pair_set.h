@@ -70,8 +70,13 @@ struct CandidateRegion {
 };
 
 struct FrictionSettings {
-  double mu = 0.0;
+  double mu = 0.0;          // the friction effect's
   double epsilon_v = 1e-3;  // [m/s]
+  double self_mu = -1.0;    // self-contact pairs' (contact.self_contact_mu); < 0: mu
+  // The coefficient of pairs with obstacle o (its own "mu", else mu) and of
+  // self-contact pairs.
+  double ForObstacle(const Obstacle& o) const { return o.friction_mu().value_or(mu); }
+  double ForSelf() const { return self_mu >= 0.0 ? self_mu : mu; }
 };
 
 class PairSet {

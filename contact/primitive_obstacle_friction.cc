@@ -46,18 +46,21 @@ int AddPrimitiveObstacleFrictionTerms(const std::vector<PrimitiveObstacleFrictio
                                       const StepContext* step, const char* family,
                                       const FrictionSettings& friction,
                                       IncrementalPotential* potential) {
-  if (!(friction.mu > 0.0)) return 0;
+  int count = 0;
   for (const PrimitiveObstacleFrictionLag& lag : lags) {
+    const double mu = friction.ForObstacle(*lag.obstacle);
+    if (!(mu > 0.0)) continue;
+    ++count;
     Term term;
     term.kind = TermKind::kDissipation;
     term.family = family;
     term.impulsive = true;
     term.nodes.assign(lag.nodes.begin(), lag.nodes.begin() + lag.num_nodes);
     term.cost = std::make_unique<PrimitiveObstacleFriction>(step, lag, friction.epsilon_v);
-    term.loss = std::make_unique<FrictionLoss>(friction.mu * lag.normal_force);
+    term.loss = std::make_unique<FrictionLoss>(mu * lag.normal_force);
     potential->AddTerm(std::move(term));
   }
-  return static_cast<int>(lags.size());
+  return count;
 }
 
 }  // namespace ipstep

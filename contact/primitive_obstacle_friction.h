@@ -3,7 +3,7 @@
 // friction (contact/friction.h, 3D form) of the primitive's closest point,
 // a fixed (lagged) combination of its n nodes (n = 3: a face's barycentric
 // weights w; n = 2: an edge's (1 - s, s)), relative to the obstacle, which
-// translates with a constant velocity v_o:
+// translates with velocity v_o (at the lag's time; zero once it stopped):
 //   v_rel = sum_k alpha_k v_k - v_o,   v_t = T^T v_rel   (T: 3 x 2, lagged),
 //   r = psi(|v_t|) v_t / |v_t|  (FrictionResidual),  loss rho(s) = mu lambda s,
 // so 1/2 rho(|r|^2) = mu lambda f0(|v_t|), and with v_k = v_base + slope
@@ -31,8 +31,9 @@ struct PrimitiveObstacleFrictionLag {
   std::array<int, 3> nodes{};
   std::array<double, 3> alpha{};
   Eigen::Matrix<double, 3, 2> tangents;
-  Eigen::Vector3d obstacle_velocity = Eigen::Vector3d::Zero();
-  double normal_force = 0.0;  // lambda [N]
+  Eigen::Vector3d obstacle_velocity = Eigen::Vector3d::Zero();  // at the lag's time
+  double normal_force = 0.0;                                    // lambda [N]
+  const Obstacle* obstacle = nullptr;  // its friction coefficient (FrictionSettings)
 };
 
 class PrimitiveObstacleFriction : public ceres::CostFunction {
@@ -50,9 +51,9 @@ class PrimitiveObstacleFriction : public ceres::CostFunction {
   double eps_v_;
 };
 
-// One term per lag (kind kDissipation, impulsive, family `family`,
-// FrictionLoss mu lambda); returns the number of lags, 0 (no terms) when mu
-// is 0.
+// One term per lag whose obstacle's coefficient mu (FrictionSettings::
+// ForObstacle) is > 0 (kind kDissipation, impulsive, family `family`,
+// FrictionLoss mu lambda); returns the number of terms.
 int AddPrimitiveObstacleFrictionTerms(const std::vector<PrimitiveObstacleFrictionLag>& lags,
                                       const StepContext* step, const char* family,
                                       const FrictionSettings& friction,

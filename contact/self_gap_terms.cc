@@ -207,7 +207,8 @@ bool SelfFriction::Evaluate(double const* const* x, double* residuals, double** 
 int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepContext* step,
                          const char* family, const FrictionSettings& friction,
                          IncrementalPotential* potential) {
-  if (!(friction.mu > 0.0)) return 0;
+  const double mu = friction.ForSelf();
+  if (!(mu > 0.0)) return 0;
   for (const SelfFrictionLag& lag : lags) {
     Term term;
     term.kind = TermKind::kDissipation;
@@ -216,7 +217,7 @@ int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepCon
     term.nodes.assign(lag.nodes.begin(), lag.nodes.end());
     term.cost = std::make_unique<SelfFriction>(step, lag.nodes.data(), lag.alpha.data(),
                                                lag.tangents, friction.epsilon_v);
-    term.loss = std::make_unique<FrictionLoss>(friction.mu * lag.normal_force);
+    term.loss = std::make_unique<FrictionLoss>(mu * lag.normal_force);
     potential->AddTerm(std::move(term));
   }
   return static_cast<int>(lags.size());

@@ -117,8 +117,9 @@ struct SelfFrictionLag {
 };
 
 // One SelfFriction term per lag (kind kDissipation, impulsive, family
-// `family`, FrictionLoss mu lambda); returns the number of lags, 0 (no
-// terms) when mu is 0. Shared by the point-triangle and edge-edge kinds.
+// `family`, FrictionLoss mu lambda, mu the self-contact coefficient
+// FrictionSettings::ForSelf); returns the number of lags, 0 (no terms) when
+// mu is 0. Shared by the point-triangle and edge-edge kinds.
 int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepContext* step,
                          const char* family, const FrictionSettings& friction,
                          IncrementalPotential* potential);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -130,6 +131,22 @@ bool IncrementalPotential::IsFeasible(const double* x) const {
     if (!f->IsFeasible(x)) return false;
   }
   return true;
+}
+
+StepFilter::Infeasibility IncrementalPotential::CheckState(const double* x) const {
+  StepFilter::Infeasibility worst = StepFilter::Infeasibility::kNone;
+  for (const auto& f : filters_) {
+    const StepFilter::Infeasibility found = f->CheckState(x);
+    if (found == StepFilter::Infeasibility::kPenetration) return found;
+    if (found != StepFilter::Infeasibility::kNone) worst = found;
+  }
+  return worst;
+}
+
+double IncrementalPotential::ReachedTime() const {
+  double reached = std::numeric_limits<double>::infinity();
+  for (const auto& f : filters_) reached = std::min(reached, f->ReachedTime());
+  return reached;
 }
 
 bool IncrementalPotential::PreciseTermEnergy(int t, double weight, const double* x,

@@ -54,6 +54,10 @@ class IncrementalPotential {
   bool IsStepValid(const double* x) const;
   double MaxStepSize(const double* from, const double* to) const;
   bool IsFeasible(const double* x) const;
+  // Every filter's CheckState: penetration if any says so, else a moving
+  // boundary not reached if any says so; and the earliest ReachedTime.
+  StepFilter::Infeasibility CheckState(const double* x) const;
+  double ReachedTime() const;
   bool has_step_filters() const { return !filters_.empty(); }
   const std::vector<std::unique_ptr<StepFilter>>& step_filters() const { return filters_; }
 

@@ -1,6 +1,7 @@
 // The prescribed (Dirichlet) motion of a constrained node: a rigid motion of
 // its initial position, translation plus rotation about a moving centre,
-// until an optional stop time after which the node holds still.
+// until an optional stop time after which the node holds still. Moving
+// obstacles translate by the same law (contact/obstacle.h: Shift).
 //
 // With x0 the initial position, c the centre, v the velocity, ω the angular
 // velocity (3D vector; in 2D only its z component, a rotation in the plane)

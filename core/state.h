@@ -19,6 +19,10 @@ enum class NodeKind {
 struct State {
   int dimension = 2;
   double time = 0.0;
+  // How far [s] the moving boundaries (staged moving obstacles) are behind
+  // `time`: 0, unless a failed step kept a state they had not reached
+  // (sim/simulation.h); the next step starts them at time - boundary_lag.
+  double boundary_lag = 0.0;
   // Flattened per node: x[dimension * i + k].
   Eigen::VectorXd x;
   Eigen::VectorXd v;

@@ -15,6 +15,7 @@
 #include "energies/term_builder.h"
 #include "sim/default_effects.h"
 #include "sim/energy_balance.h"
+#include "sim/prescribed_staging.h"
 
 namespace ipstep {
 
@@ -140,8 +141,9 @@ void Simulation::ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const {
   state_.PrescribedPositions(t, x);
 }
 
-void Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
+bool Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
   const double t_next = state_.time + h;
+  std::unique_ptr<PrescribedStaging> staging;
   if (potential_->has_step_filters()) {
     // Start from a feasible point: free nodes move from x_n towards the guess only
     // as far as continuous collision detection allows (with a safety factor).
@@ -156,21 +158,34 @@ void Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
           "infeasible start: the state at the start of the step penetrates (after a "
           "failed step)";
       *x = state_.x;
-      return;
+      return false;
     }
     if (!potential_->IsStepValid(start.data())) {
-      report->converged = false;
-      report->status = "infeasible start: prescribed nodes move into an obstacle";
-      *x = start;
-      return;
+      // The prescribed nodes cannot move to their targets at once: start from
+      // the predictor when its path is free, else stage them
+      // (sim/prescribed_staging.h).
+      if (x->allFinite() && potential_->IsStepValid(x->data())) {
+        start = *x;
+      } else {
+        staging = std::make_unique<PrescribedStaging>(state_, state_.x, start);
+        *x = state_.x;
+        if (!staging->Next(*potential_, x)) {
+          report->converged = false;
+          report->status =
+              "moving boundary not reached: prescribed nodes touch at the start of their move";
+          return false;
+        }
+      }
     }
-    const double t = potential_->MaxStepSize(start.data(), x->data());
-    if (t < 1.0) *x = start + kFeasibleStartFraction * t * (*x - start);
+    if (!staging) {
+      const double t = potential_->MaxStepSize(start.data(), x->data());
+      if (t < 1.0) *x = start + kFeasibleStartFraction * t * (*x - start);
+    }
   }
   if (!x->allFinite()) {
     report->converged = false;
     report->status = "non-finite initial guess";
-    return;
+    return true;
   }
   for (int solve = 0;; ++solve) {
     const StepSolveResult result = solver_->Solve(x);
@@ -195,7 +210,49 @@ void Simulation::SolveStep(double h, Eigen::VectorXd* x, StepReport* report) {
     bool refreshed = false;
     for (const auto& filter : potential_->step_filters())
       refreshed |= filter->RefreshTerms(x->data());
+    const Eigen::VectorXd solution = staging ? *x : Eigen::VectorXd();
+    TakeProposedStart(x);
+    if (staging && !staging->reached()) {
+      if (!staging->Next(*potential_, x, &solution)) break;
+      refreshed = true;
+    }
     if (!refreshed) break;
+  }
+  if (staging && !staging->reached()) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "moving boundary not reached: prescribed nodes at %.3g %% of their move after "
+                  "%d stages",
+                  100.0 * staging->progress(), staging->stages());
+    report->converged = false;
+    report->status = text;
+    return false;
+  }
+  return true;
+}
+
+void Simulation::TakeProposedStart(Eigen::VectorXd* x) {
+  const auto& filters = potential_->step_filters();
+  for (size_t k = 0; k < filters.size(); ++k) {
+    Eigen::VectorXd proposal = *x;
+    if (!filters[k]->ProposeStart(proposal.data())) continue;
+    bool accepted = proposal.allFinite();
+    for (size_t j = 0; j < filters.size() && accepted; ++j) {
+      if (j == k) continue;
+      filters[j]->OnAccepted(x->data());
+      accepted = filters[j]->IsStepValid(proposal.data());
+    }
+    // The terms must be defined there too (a gap at the barrier's margin is not).
+    double energy = 0.0;
+    if (accepted) {
+      potential_->NotifyAccepted(proposal.data());
+      accepted = potential_->Evaluate(proposal.data(), &energy, nullptr);
+    }
+    if (accepted) {
+      *x = proposal;
+    } else {
+      filters[k]->StartRejected();
+    }
   }
 }
 
@@ -327,6 +384,9 @@ void Simulation::Advance(double h, StepReport* report) {
   Eigen::VectorXd x;
   integrator_->Predict(state_, gravity_, h, &potential_->context(), &x);
   const bool variational = integrator_->is_variational();
+  // The start, to go back to when the step ends inside an obstacle.
+  const State start = state_;
+  bool boundary_reached = true;  // the prescribed nodes reached their targets
   // The energy balance starts before the filters' BeginStep, which report
   // what they change (PrescribedWork): sim/energy_balance.h.
   const bool check_energy = variational && options_.energy_tolerance > 0.0;
@@ -339,7 +399,7 @@ void Simulation::Advance(double h, StepReport* report) {
   if (variational) {
     ApplyBoundaryConditions(t_next, &x);
     for (const auto& filter : potential_->step_filters()) filter->BeginStep(state_.x.data());
-    SolveStep(h, &x, report);
+    boundary_reached = SolveStep(h, &x, report);
     Eigen::VectorXd impulsive_forces;
     if (integrator_->separates_impulses() && ImpulsiveForces(x, &impulsive_forces)) {
       integrator_->UpdateWithImpulses(x, impulsive_forces, h, &state_);
@@ -355,17 +415,35 @@ void Simulation::Advance(double h, StepReport* report) {
       integrator_->Advance(forces, h, &state_);
     }
   }
-  ApplyBoundaryConditions(t_next, &state_.x);
+  // Prescribed nodes whose staging ran out stay where it left them.
+  if (boundary_reached) ApplyBoundaryConditions(t_next, &state_.x);
+  state_.boundary_lag = 0.0;
   // One check of the new state for every integrator: explicit steps have no
   // step filter protecting them, and a variational step must also have
   // finished its filters' work (e.g. a moving obstacle's staged time).
   if (potential_->has_step_filters()) {
     potential_->NotifyAccepted(state_.x.data());
-    if (!potential_->IsFeasible(state_.x.data()) && report->converged) {
-      // A step that failed already keeps its own reason (e.g. "infeasible
-      // start: prescribed nodes move into an obstacle").
+    const StepFilter::Infeasibility found = potential_->CheckState(state_.x.data());
+    // A step that failed already keeps its own reason (e.g. "moving boundary
+    // not reached: prescribed nodes ...").
+    if (found == StepFilter::Infeasibility::kPenetration) {
+      if (report->converged) report->status = "infeasible state after the step (penetration)";
       report->converged = false;
-      report->status = "infeasible state after the step (penetration)";
+      // No later step may start inside an obstacle: back to the start (the
+      // moving boundaries where they were then), time goes on.
+      state_ = start;
+      state_.boundary_lag = start.boundary_lag + h;
+      potential_->NotifyAccepted(state_.x.data());
+    } else if (found == StepFilter::Infeasibility::kBoundaryNotReached && boundary_reached) {
+      report->status =
+          "moving boundary not reached: a moving obstacle's staging ran out" +
+          (report->converged ? std::string() : " (last solve: " + report->status + ")");
+      report->converged = false;
+    }
+    if (variational && found != StepFilter::Infeasibility::kPenetration) {
+      // A state short of a moving obstacle's end time is free of it where it
+      // got to: the next step starts the obstacles there.
+      state_.boundary_lag = std::max(0.0, t_next - potential_->ReachedTime());
     }
   }
   state_.PrescribedVelocities(t_next, &state_.v);

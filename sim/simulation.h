@@ -83,6 +83,10 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   // One step of time_step(), retried as substeps (SimulationOptions::max_substeps).
+  // A step that fails keeps its state unless it penetrates: then it goes
+  // back to its start state (time goes on, State::boundary_lag); a state
+  // whose moving boundaries were not reached ("moving boundary not reached")
+  // is kept where they got to.
   StepReport Step();
   // One step of h [s] (in the range of SimulationOptions::time_step); without
   // `retry_as_substeps` a failed step is not retried (an adaptive run's
@@ -140,7 +144,12 @@ class Simulation {
   void ApplyBoundaryConditions(double t, Eigen::VectorXd* x) const;
   // One step of h from the state (Step: h, or a substep of it).
   void Advance(double h, StepReport* report);
-  void SolveStep(double h, Eigen::VectorXd* x, StepReport* report);
+  // Returns false when the prescribed nodes in x are short of their targets
+  // (a step whose staging ran out: sim/prescribed_staging.h).
+  bool SolveStep(double h, Eigen::VectorXd* x, StepReport* report);
+  // A start a filter's staging proposes after its refresh (StepFilter::
+  // ProposeStart), taken into x when every other filter accepts it.
+  void TakeProposedStart(Eigen::VectorXd* x);
 
   Scene scene_;
   SimulationOptions options_;

@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "contact/obstacles/box_obstacle.h"
 #include "contact/obstacles/plane_obstacle.h"
@@ -15,14 +16,44 @@ namespace ipstep {
 
 namespace {
 
-// Read after the shape's own keys (the order in which errors are found).
+// Keys every shape takes besides its own (read after them: the order in which
+// errors are found).
+const std::vector<std::string> kCommonKeys = {"type", "velocity", "until", "mu",
+                                              "angular_velocity"};
+
+std::vector<std::string> KeysOf(std::vector<std::string> own) {
+  own.insert(own.end(), kCommonKeys.begin(), kCommonKeys.end());
+  return own;
+}
+
 Eigen::Vector3d ReadVelocity(const JsonNode& p, int dimension) {
   if (!p.Has("velocity")) return Eigen::Vector3d::Zero();
   return p.Get("velocity").Vector3(dimension, limits::kMaxSpeed, "m/s");
 }
 
+// The motion law of moving nodes (core/prescribed_motion.h), translation only:
+// "until" stops it; a rotation is refused (its continuous collision detection
+// is not linear in the obstacle's frame).
+ObstaclePtr Finish(const JsonNode& p, std::shared_ptr<Obstacle> obstacle) {
+  if (p.Has("angular_velocity")) {
+    p.Get("angular_velocity")
+        .Fail(
+            "obstacles do not rotate (only \"velocity\" and \"until\" move them; a rotating "
+            "boundary can be made of moving nodes)");
+  }
+  if (auto until = p.Find("until")) {
+    const double stop = until->InRange(0.0, limits::kMaxDuration, "s", /*min_open=*/true);
+    if (!obstacle->is_moving()) until->Fail("an obstacle without \"velocity\" does not move");
+    obstacle->set_until(stop);
+  }
+  if (auto mu = p.Find("mu")) {
+    obstacle->set_friction_mu(mu->InRange(0.0, limits::kMaxFrictionMu, ""));
+  }
+  return obstacle;
+}
+
 ObstaclePtr ReadPlane(const JsonNode& p, int dimension) {
-  p.ExpectObject({"type", "point", "normal", "velocity"});
+  p.ExpectObject(KeysOf({"point", "normal"}));
   const Eigen::Vector3d point = p.Get("point").Vector3(dimension, limits::kMaxCoordinate, "m");
   const Eigen::Vector3d normal =
       p.Get("normal").Vector3(dimension, std::numeric_limits<double>::max(), "");
@@ -31,28 +62,28 @@ ObstaclePtr ReadPlane(const JsonNode& p, int dimension) {
   if (!(length > 0.0) || !std::isfinite(length)) {
     p.Get("normal").Fail("must not be the zero vector");
   }
-  return std::make_shared<PlaneObstacle>(dimension, point, normal / length,
-                                         ReadVelocity(p, dimension), p.path());
+  return Finish(p, std::make_shared<PlaneObstacle>(dimension, point, normal / length,
+                                                   ReadVelocity(p, dimension), p.path()));
 }
 
 ObstaclePtr ReadSphere(const JsonNode& p, int dimension) {
-  p.ExpectObject({"type", "center", "radius", "velocity"});
+  p.ExpectObject(KeysOf({"center", "radius"}));
   const Eigen::Vector3d center = p.Get("center").Vector3(dimension, limits::kMaxCoordinate, "m");
   const double radius = p.Get("radius").InRange(limits::kMinLength, limits::kMaxCoordinate, "m");
-  return std::make_shared<SphereObstacle>(dimension, center, radius, ReadVelocity(p, dimension),
-                                          p.path());
+  return Finish(p, std::make_shared<SphereObstacle>(dimension, center, radius,
+                                                    ReadVelocity(p, dimension), p.path()));
 }
 
 ObstaclePtr ReadBox(const JsonNode& p, int dimension) {
-  p.ExpectObject({"type", "min", "max", "velocity"});
+  p.ExpectObject(KeysOf({"min", "max"}));
   const Eigen::Vector3d lower = p.Get("min").Vector3(dimension, limits::kMaxCoordinate, "m");
   const Eigen::Vector3d upper = p.Get("max").Vector3(dimension, limits::kMaxCoordinate, "m");
   for (int k = 0; k < dimension; ++k) {
     if (!(upper[k] > lower[k]))
       p.Get("max").Fail("must be greater than \"min\" in every component");
   }
-  return std::make_shared<BoxObstacle>(dimension, lower, upper, ReadVelocity(p, dimension),
-                                       p.path());
+  return Finish(p, std::make_shared<BoxObstacle>(dimension, lower, upper,
+                                                 ReadVelocity(p, dimension), p.path()));
 }
 
 }  // namespace

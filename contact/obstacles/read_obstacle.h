@@ -1,6 +1,7 @@
 // An obstacle from its scene entry (an element of "contact.obstacles",
 // docs/contact.md "Scene keys"): "type" picks the shape, which reads its keys;
-// every shape takes an optional "velocity". Problems are InputErrors naming
+// every shape takes an optional "velocity", "until" (its stop time) and "mu"
+// (its friction coefficient). Problems are InputErrors naming
 // the key (core/json_node.h). The obstacle's name is the entry's path.
 #pragma once
 

@@ -24,7 +24,8 @@ void MeshObstaclePairs::LagFriction(const double* x, double t) {
   auto lag = [&](double d, const Eigen::Vector3d& n, double weight, const Obstacle& obstacle) {
     PrimitiveObstacleFrictionLag f;
     f.tangents = TangentBasis(n, 3).leftCols<2>();
-    f.obstacle_velocity = obstacle.velocity();
+    f.obstacle_velocity = obstacle.VelocityAt(t);
+    f.obstacle = &obstacle;
     f.normal_force = -kappa * weight * BarrierDerivative(d, d_hat_);
     return f;
   };

@@ -134,7 +134,7 @@ void NodeObstaclePairs::LagFriction(const double* x, double t) {
     if (!(d > 0.0 && d < c_.d_hat)) continue;
     const double lambda = -*c_.kappa * c_.mesh->weights[pair.slot] * BarrierDerivative(d, c_.d_hat);
     lagged_.push_back(LaggedFriction{c_.mesh->nodes[pair.slot], TangentBasis(n, c_.dimension),
-                                     o.velocity(), lambda});
+                                     o.VelocityAt(t), lambda, &o});
   }
 }
 
@@ -144,7 +144,11 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
   const double eps_v = friction.epsilon_v;
   const double c = kFrictionSpeedScale * eps_v;
   const std::vector<int> sides = c_.dimension == 2 ? std::vector<int>{1, -1} : std::vector<int>{0};
+  int count = 0;
   for (const LaggedFriction& f : lagged_) {
+    const double mu = friction.ForObstacle(*f.obstacle);
+    if (!(mu > 0.0)) continue;
+    ++count;
     for (int side : sides) {
       Term term;
       term.kind = TermKind::kDissipation;
@@ -153,7 +157,7 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
       term.nodes = {f.node};
       term.cost = std::make_unique<ObstacleFriction>(c_.step, f.node, f.tangents,
                                                      f.obstacle_velocity, eps_v, side, c);
-      const double scale = friction.mu * f.normal_force;
+      const double scale = mu * f.normal_force;
       if (side == 0) {
         term.loss = std::make_unique<FrictionLoss>(scale);
       } else {
@@ -162,7 +166,7 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
       potential->AddTerm(std::move(term));
     }
   }
-  return static_cast<int>(lagged_.size());
+  return count;
 }
 
 }  // namespace ipstep

@@ -50,8 +50,9 @@ class NodeObstaclePairs : public PairSet {
   struct LaggedFriction {
     int node;
     Eigen::Matrix3d tangents;
-    Eigen::Vector3d obstacle_velocity;
+    Eigen::Vector3d obstacle_velocity;  // at the lag's time
     double normal_force;
+    const Obstacle* obstacle;  // its friction coefficient (FrictionSettings)
   };
 
   Eigen::Vector3d Point(const double* x, int slot) const;

@@ -198,6 +198,8 @@ int PointEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
                                      IncrementalPotential* potential) const {
   const double eps_v = friction.epsilon_v;
   const double c = kFrictionSpeedScale * eps_v;
+  const double mu = friction.ForSelf();
+  if (!(mu > 0.0)) return 0;
   for (const LaggedFriction& f : lagged_) {
     for (int side : {1, -1}) {
       Term term;
@@ -207,7 +209,7 @@ int PointEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
       term.nodes = {f.p, f.a, f.b};
       term.cost =
           std::make_unique<EdgeFriction>(c_.step, f.p, f.a, f.b, f.tangent, f.alpha, side, c);
-      term.loss = std::make_unique<OneSidedFrictionLoss>(friction.mu * f.normal_force, c, eps_v);
+      term.loss = std::make_unique<OneSidedFrictionLoss>(mu * f.normal_force, c, eps_v);
       potential->AddTerm(std::move(term));
     }
   }
