@@ -21,12 +21,15 @@
 namespace ipstep {
 namespace {
 
-// Quiet by default: glog's and Ceres's warnings (Ceres's "Restarting
-// non-linear conjugate gradients", "Error in evaluating the ResidualBlock", ...)
-// do not reach a normal run; only errors do. -v=1 or more (ipstep's step and
-// iteration logs) or an explicit --minloglevel brings them back.
+// Quiet by default: nothing glog or Ceres logs reaches a normal run — neither
+// Ceres's warnings ("Restarting non-linear conjugate gradients", "Error in
+// evaluating the ResidualBlock", ...) nor its errors ("Terminating: Residual
+// and Jacobian evaluation failed."), whose news is the step's status; only a
+// fatal error (an abort) is still logged. The programs' own messages are
+// printed, not logged. -v=1 or more (ipstep's step and iteration logs) or an
+// explicit --minloglevel brings the log back.
 void QuietLogging() {
-  if (FLAGS_v <= 0 && FlagIsDefault("minloglevel")) FLAGS_minloglevel = google::GLOG_ERROR;
+  if (FLAGS_v <= 0 && FlagIsDefault("minloglevel")) FLAGS_minloglevel = google::GLOG_FATAL;
 }
 
 // " (in flagfile f, line 3)" for an error "flag: --name: ..." about a flag

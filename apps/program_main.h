@@ -7,9 +7,10 @@
 
 namespace ipstep {
 
-// Logging is quiet by default: glog's and Ceres's warnings are not shown;
-// -v=1 logs every step, -v=2 every optimizer iteration, and both show the
-// warnings (so does an explicit --minloglevel=0). Returns run()'s exit code, or kInputErrorExitCode after
+// Logging is quiet by default: nothing glog or Ceres logs is shown (warnings
+// and errors alike; a fatal error still is); -v=1 logs every step, -v=2 every
+// optimizer iteration, and both show Ceres's log (so does an explicit
+// --minloglevel). Returns run()'s exit code, or kInputErrorExitCode after
 // printing "<program>: error: <message>" for an InputError, an option the
 // library names printed as its flag (apps/flag_names.h) (1 and "internal
 // error" for any other exception). An OutputError (io/output_file.h) is one
