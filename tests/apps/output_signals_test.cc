@@ -81,19 +81,6 @@ std::vector<std::string> LoggedLines(const std::string& output) {
   return found;
 }
 
-// Runs `command` with stdout at /dev/full; the outcome's output is stderr.
-Outcome RunWithStdoutFull(const std::string& command) {
-  Outcome outcome;
-  FILE* pipe = popen((command + " 2>&1 >/dev/full").c_str(), "r");
-  if (pipe == nullptr) return outcome;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) outcome.output.append(buffer, n);
-  const int status = pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return outcome;
-}
-
 class OutputSignals : public ipstep::testing::ProgramTest {};
 
 // ---- OutputFile ----
@@ -180,7 +167,7 @@ TEST_F(OutputSignals, AFullStdoutIsExitCode3) {
         std::string(IPSTEP_COMPARE_BINARY) +
             " --scene=oscillator --steps=3 --integrators=newmark --optimizers=newton"}) {
     // stderr into the pipe, stdout to /dev/full.
-    const Outcome o = RunWithStdoutFull(command);
+    const Outcome o = ipstep::testing::RunProgram(command, "", "2>&1 >/dev/full");
     EXPECT_EQ(o.exit_code, 3) << command << "\n" << o.output;
     EXPECT_NE(o.output.find(": error: output: stdout: write failed: No space left on device"),
               std::string::npos)
