@@ -179,7 +179,7 @@ int Run(const EffectRegistry& registry) {
   if (diverged > 0) {
     std::printf("\ndiverged: %s; the run stops there.\n", DivergenceRule::Description());
   }
-  std::fflush(stdout);
+  CheckStdout();  // the table is the program's data: a failed write is exit code 3
   return 0;
 }
 

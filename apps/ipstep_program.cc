@@ -1,9 +1,13 @@
 // RunIpstep (apps/programs.h), the ipstep program: runs one scene with one
 // integrator and one optimiser.
 //   ipstep --scene=cloth --integrator=newmark --optimizer=lbfgs --steps=60 --stats=cloth.csv
-// Exit codes: 0 success, 2 bad input (scene file or flag), 3 a step failed (also
-// as substeps, --max_substeps) or the run diverged (sim/divergence.h), with
-// --on_failure=stop.
+// Exit codes: 0 success, 2 bad input (scene file or flag, an output path that
+// cannot be written), 3 a step failed (also as substeps, --max_substeps) or the
+// run diverged (sim/divergence.h), with --on_failure=stop, or an output could
+// not be written (io/output_file.h); 130 / 143 interrupted by SIGINT / SIGTERM
+// (apps/run_signals.h: the step in progress finishes, the files are closed).
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -16,6 +20,8 @@
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/programs.h"
+#include "apps/run_signals.h"
+#include "apps/setup_progress.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
@@ -23,6 +29,7 @@
 #include "io/positions_writer.h"
 #include "io/stats_writer.h"
 #include "problems/scene_loader.h"
+#include "problems/solid.h"
 #include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 #include "sim/step_size_controller.h"
@@ -40,7 +47,10 @@ DEFINE_string(frames, "",
               "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body, "
               "obstacles) at its simulated time; tools/animate.py DIR OUT.gif draws it");
 DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
-DEFINE_bool(progress, true, "Print a progress line on stderr for runs longer than 3 s");
+DEFINE_bool(progress, true,
+            "Progress on stderr: a line for runs longer than 3 s and, when stderr is a terminal "
+            "or --progress is given, the set-up's phases (loading and meshing the scene, building "
+            "the simulation, the first step's analysis) with their size and time");
 DEFINE_bool(adaptive, false,
             "Error-controlled time steps to the end time (--t_end, default the scene's "
             "time_step x steps): each step's local error estimate within --error_tolerance x "
@@ -54,6 +64,26 @@ DEFINE_double(max_dt, 0.0, "With --adaptive: the largest step [s]; default t_end
 namespace ipstep {
 namespace {
 
+// The set-up lines (apps/setup_progress.h): every phase with an explicit
+// --progress, phases longer than half a second when stderr is a terminal,
+// none with --noprogress or otherwise.
+double SetupDelay() {
+  if (!FLAGS_progress) return -1.0;
+  if (!FlagIsDefault("progress")) return 0.0;
+  return isatty(STDERR_FILENO) ? 0.5 : -1.0;
+}
+
+std::string SceneSize(const Scene& scene) {
+  std::string text = Thousands(scene.num_nodes()) + " nodes";
+  if (scene.solid) {
+    text +=
+        ", " + Thousands(static_cast<long long>(scene.solid->mesh.elements.size())) + " elements";
+  } else if (!scene.springs.empty()) {
+    text += ", " + Thousands(static_cast<long long>(scene.springs.size())) + " springs";
+  }
+  return text;
+}
+
 int Run(const EffectRegistry& registry) {
   SimulationOptions options = SimulationOptionsFromFlags(registry);
   if (FLAGS_on_failure != "stop" && FLAGS_on_failure != "continue") {
@@ -63,7 +93,10 @@ int Run(const EffectRegistry& registry) {
   options.max_substeps =
       CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps; 1 is no retry");
   CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
+  SetupProgress setup("ipstep", SetupDelay());
+  setup.Begin("loading scene " + ClipInput(FLAGS_scene));
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
+  setup.End(SceneSize(scene));
   CheckContactFlagsApply(scene);
   RunOptions run_options;
   if (FLAGS_adaptive) {
@@ -108,7 +141,11 @@ int Run(const EffectRegistry& registry) {
       }
     }
   }
+  setup.Begin("building the simulation");
   Simulation sim(scene, options);
+  setup.End(Thousands(static_cast<long long>(sim.potential().terms().size())) + " terms, " +
+            Thousands(static_cast<long long>(sim.state().num_free_nodes()) * scene.dimension) +
+            " free DOFs");
   ValidateRunOptions(sim, run_options);  // before any output: one error line
 
   std::unique_ptr<StatsWriter> stats;
@@ -159,7 +196,7 @@ int Run(const EffectRegistry& registry) {
     std::printf("  inertia: %d terms\n", sim.potential().CountTerms(TermKind::kInertia));
   }
   for (const std::string& line : sim.effect_summaries()) std::printf("  %s\n", line.c_str());
-  std::fflush(stdout);
+  CheckStdout();  // a lost stdout stops the run before it starts
 
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
@@ -169,9 +206,17 @@ int Run(const EffectRegistry& registry) {
   run_options.stop_on_divergence = run_options.stop_on_failure;
   run_options.before_step = [&](int step) {
     if (iterations) iterations->set_step(step);
+    // The first step pays for the solver's analysis (the sparsity pattern's
+    // ordering, Ceres's preprocessing).
+    if (step == 1 && sim.integrator().is_variational()) {
+      setup.Begin("step 1 (with the solver's first analysis)");
+    }
   };
+  // A failed write (OutputError) stops the run from here: exit code 3.
   run_options.after_step = [&](const StepReport& r) {
+    if (r.step == 1) setup.End(std::to_string(r.iterations) + " iterations");
     if (stats) stats->Write(r);
+    if (iterations) iterations->Flush();
     if (frames && r.step % FLAGS_frame_every == 0) frames->Write(r.step);
     VLOG(1) << "step " << r.step << " t=" << r.time << " iterations=" << r.iterations
             << " residual=" << r.residual << " E=" << r.energies.total() << " " << r.status;
@@ -208,10 +253,17 @@ int Run(const EffectRegistry& registry) {
       progress_shown = true;
     }
   };
+  RunSignals signals;
+  run_options.interrupt = signals.flag();
   const RunSummary run = RunTrajectory(sim, run_options);
   if (progress_shown) std::fprintf(stderr, "\n");
+  // The last finished step's positions; every file complete before the summary.
   if (positions) positions->Write(sim.state());
-  if (run.termination != RunTermination::kCompleted) {
+  if (stats) stats->Close();
+  if (iterations) iterations->Close();
+  if (run.termination == RunTermination::kInterrupted) {
+    std::fprintf(stderr, "%s (%s)\n", run.message.c_str(), signals.name());
+  } else if (run.termination != RunTermination::kCompleted) {
     std::fprintf(stderr, "stopping (--on_failure=stop): %s\n", run.message.c_str());
   }
   // "done: N steps" counts the steps taken; per step means per step taken.
@@ -239,6 +291,7 @@ int Run(const EffectRegistry& registry) {
       "drift %.3g energy scales (%.3g J)\n",
       run.initial_energies.total(), run.final_energies.total(), run.final_energies.kinetic,
       run.final_energies.potential, run.max_energy_drift, run.energy_scale);
+  if (run.termination == RunTermination::kInterrupted) return signals.exit_code();
   if (run.termination != RunTermination::kCompleted) return kStepFailureExitCode;
   return 0;
 }

@@ -227,8 +227,7 @@ bool HandleHelpFlags(const char* program) {
   } else {
     return false;
   }
-  std::fflush(stdout);
-  return true;
+  return true;  // ProgramMain flushes and checks stdout
 }
 
 }  // namespace ipstep

@@ -1,7 +1,9 @@
 #include "apps/program_main.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -13,17 +15,21 @@
 #include "apps/flag_names.h"
 #include "apps/program_help.h"
 #include "core/input_error.h"
+#include "io/output_file.h"
 #include "solver/allocator_tuning.h"
 
 namespace ipstep {
 namespace {
 
-// Quiet by default: glog's and Ceres's warnings (Ceres's "Restarting
-// non-linear conjugate gradients", "Error in evaluating the ResidualBlock", ...)
-// do not reach a normal run; only errors do. -v=1 or more (ipstep's step and
-// iteration logs) or an explicit --minloglevel brings them back.
+// Quiet by default: nothing glog or Ceres logs reaches a normal run — neither
+// Ceres's warnings ("Restarting non-linear conjugate gradients", "Error in
+// evaluating the ResidualBlock", ...) nor its errors ("Terminating: Residual
+// and Jacobian evaluation failed."), whose news is the step's status; only a
+// fatal error (an abort) is still logged. The programs' own messages are
+// printed, not logged. -v=1 or more (ipstep's step and iteration logs) or an
+// explicit --minloglevel brings the log back.
 void QuietLogging() {
-  if (FLAGS_v <= 0 && FlagIsDefault("minloglevel")) FLAGS_minloglevel = google::GLOG_ERROR;
+  if (FLAGS_v <= 0 && FlagIsDefault("minloglevel")) FLAGS_minloglevel = google::GLOG_FATAL;
 }
 
 // " (in flagfile f, line 3)" for an error "flag: --name: ..." about a flag
@@ -38,6 +44,18 @@ std::string OriginNote(const std::string& message) {
 }
 
 }  // namespace
+
+void CheckStdout() {
+  // A write that failed earlier (a full buffer) left no errno: the flush of
+  // what stdio still holds gives the reason again.
+  const bool failed = std::ferror(stdout) != 0;
+  std::clearerr(stdout);
+  errno = 0;
+  if (std::fflush(stdout) != 0 || failed) {
+    throw OutputError("output: stdout", "", OutputError::Kind::kWrite,
+                      errno > 0 ? std::strerror(errno) : "the stream failed");
+  }
+}
 
 std::string ProgramName(int argc, char** argv, const char* fallback) {
   if (argc < 1 || argv == nullptr || argv[0] == nullptr || argv[0][0] == '\0') return fallback;
@@ -66,12 +84,27 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
     int count = static_cast<int>(arguments.size());
     char** parsed = pointers.data();
     gflags::ParseCommandLineNonHelpFlags(&count, &parsed, true);
-    if (HandleHelpFlags(program)) return 0;
+    if (HandleHelpFlags(program)) {
+      CheckStdout();
+      return 0;
+    }
     QuietLogging();
     if (!google::IsGoogleLoggingInitialized()) {
       google::InitGoogleLogging(argc > 0 ? argv[0] : program);
     }
-    return run();
+    const int code = run();
+    try {
+      CheckStdout();  // the tables and summaries are the programs' data
+    } catch (const OutputError& e) {
+      std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+      return code != 0 ? code : kStepFailureExitCode;
+    }
+    return code;
+  } catch (const OutputError& e) {
+    // A path that cannot be written is bad input (2); a write that failed
+    // (a full disk) is not: the run stopped there (3).
+    std::fprintf(stderr, "%s: error: %s\n", program, WithFlagNames(e.what()).c_str());
+    return e.kind() == OutputError::Kind::kOpen ? kInputErrorExitCode : kStepFailureExitCode;
   } catch (const InputError& e) {
     // The library names options, the programs name flags (apps/flag_names.h).
     const std::string message = WithFlagNames(e.what());

@@ -10,8 +10,10 @@
 //
 // Each parses and checks the command line (apps/program_main.h: one error line
 // naming the flag or file and exit code 2 for bad input, --help, --version),
-// runs and returns the exit code (0 success, 2 bad input, 3 a step failed with
-// --on_failure=stop). Link ipstep::flags (installed with the library).
+// runs and returns the exit code (0 success, 2 bad input or an output path that
+// cannot be written, 3 a step failed with --on_failure=stop or an output could
+// not be written; RunIpstep: 130 / 143 interrupted by SIGINT / SIGTERM,
+// apps/run_signals.h). Link ipstep::flags (installed with the library).
 // Call one of them once per process: the flags are process-wide (gflags), so a
 // second call starts from the values the first one parsed.
 #pragma once

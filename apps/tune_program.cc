@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +28,7 @@
 #include "apps/programs.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
+#include "io/output_file.h"
 #include "problems/scene_loader.h"
 #include "sim/reference.h"
 #include "sim/run_trajectory.h"
@@ -138,6 +138,12 @@ int Run(const EffectRegistry& registry) {
   }
   for (const std::string& name : optimizers) ParseOptimizer(name);
   const bool position = FLAGS_measure == "position";
+  // Opened before the search, so that a path that cannot be written is an
+  // error now, not after it (io/output_file.h).
+  std::unique_ptr<OutputFile> tune_output;
+  if (!FLAGS_tune_output.empty()) {
+    tune_output = std::make_unique<OutputFile>(FLAGS_tune_output, "flag: --tune_output");
+  }
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&start] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -236,16 +242,17 @@ int Run(const EffectRegistry& registry) {
       }
     }
   }
-  if (!FLAGS_tune_output.empty()) {
-    std::ofstream out(FLAGS_tune_output);
-    if (!out) throw InputError("flag", "--tune_output", "cannot write '" + FLAGS_tune_output + "'");
+  if (tune_output) {
+    std::ostream& out = tune_output->stream();
     out << "integrator,optimizer,adaptive,dt,tolerance,error_tolerance,steps,failed,seconds,"
            "error\n";
     for (const Candidate& c : runs) {
       out << c.integrator << ',' << c.optimizer << ',' << (c.adaptive ? 1 : 0) << ',' << c.dt << ','
           << c.tolerance << ',' << c.error_tolerance << ',' << c.steps << ',' << c.failed << ','
           << c.seconds << ',' << c.error << '\n';
+      tune_output->EndRow();
     }
+    tune_output->Close();
   }
   // The Pareto front: runs with an error, by cost, each more accurate than every cheaper one.
   std::vector<Candidate> measured;

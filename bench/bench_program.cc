@@ -7,11 +7,9 @@
 //   ipstep_bench ... --shard=3/8 --output=results/shard3.csv      (one shard)
 //   ipstep_bench --merge='results/shard*.csv' --output=results/sweep.csv
 //
-// Exit codes: 0 success (failed runs are rows, not errors), 2 bad input.
+// Exit codes: 0 success (failed runs are rows, not errors), 2 bad input (also an
+// --output that cannot be written), 3 a failed write of --output (a full disk).
 #include <glob.h>
-
-#include <cerrno>
-#include <cstring>
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +19,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -38,6 +37,7 @@
 #include "core/input_limits.h"
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
+#include "io/output_file.h"
 #include "problems/scene_loader.h"
 
 DEFINE_string(scenes, "oscillator", "Comma-separated scene names or JSON paths");
@@ -178,8 +178,9 @@ std::vector<std::string> CsvFields(const std::string& line) {
   return fields;
 }
 
-// Opens --output for writing, creating its folder; an InputError says why not.
-std::ofstream OpenOutput(const std::string& path) {
+// Opens --output for writing, creating its folder; an InputError or an
+// OutputError (kOpen) says why not.
+std::unique_ptr<OutputFile> OpenOutput(const std::string& path) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code error;
   if (!parent.empty() && !std::filesystem::is_directory(parent, error)) {
@@ -190,12 +191,7 @@ std::ofstream OpenOutput(const std::string& path) {
           "cannot create the folder '" + ClipInput(parent.string()) + "': " + error.message());
     }
   }
-  std::ofstream out(path);
-  if (!out) {
-    throw InputError("flag", "--output",
-                     "cannot write '" + ClipInput(path) + "': " + std::strerror(errno));
-  }
-  return out;
+  return std::make_unique<OutputFile>(path, "flag: --output");
 }
 
 // Merges shard files: every shard i/N of one sweep exactly once, every
@@ -320,9 +316,13 @@ int Merge() {
                      "configuration " + std::to_string(rows.rbegin()->first) +
                          " is beyond the sweep's " + std::to_string(expected));
   }
-  std::ofstream out = OpenOutput(FLAGS_output);
-  out << header << '\n';
-  for (const auto& row : rows) out << row.second.first << '\n';
+  const std::unique_ptr<OutputFile> output = OpenOutput(FLAGS_output);
+  output->stream() << header << '\n';
+  for (const auto& row : rows) {
+    output->stream() << row.second.first << '\n';
+    output->EndRow();
+  }
+  output->Close();
   std::printf("merged %zu rows from %zu files (%zu shards) into %s\n", rows.size(), files.size(),
               shard_files.size(), FLAGS_output.c_str());
   return 0;
@@ -475,8 +475,9 @@ int Run(const EffectRegistry& registry) {
     }
     return 0;
   }
-  std::ofstream out = OpenOutput(FLAGS_output);
-  out << CsvHeader() << '\n' << std::flush;
+  const std::unique_ptr<OutputFile> output = OpenOutput(FLAGS_output);
+  output->stream() << CsvHeader() << '\n';
+  output->Flush();
 
   ReferenceCache references(FLAGS_reference_optimizer, FLAGS_reference_tolerance, &registry);
   if (FLAGS_reference_cache != "none") {
@@ -515,7 +516,8 @@ int Run(const EffectRegistry& registry) {
       row->position_error = MaxNodeDistance(row->result.final_x, ref.x, row->result.free_nodes,
                                             row->result.dimension);
     }
-    out << CsvRow(*row) << '\n' << std::flush;
+    output->stream() << CsvRow(*row) << '\n';
+    output->Flush();  // a stopped sweep keeps its rows; a failed write stops it (exit code 3)
     std::fprintf(stderr,
                  "[%d] %s grid=%d %s %s dt=%.4g tol=%g: %.3f ms/step, %.2f it/step, "
                  "%d failed, error %.3g, %s\n",
@@ -548,6 +550,7 @@ int Run(const EffectRegistry& registry) {
       finish(&rows[i]);
     }
   }
+  output->Close();
   if (FLAGS_errors) {
     std::fprintf(stderr, "ipstep_bench: %d reference runs computed, the others read from %s\n",
                  references.computed(),

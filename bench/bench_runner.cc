@@ -130,6 +130,11 @@ void WriteReference(const std::string& file, const std::string& key,
         << ' ' << reference.failed_steps << ' ' << reference.x.size() << '\n'
         << reference.description << '\n';
     for (Eigen::Index i = 0; i < reference.x.size(); ++i) out << reference.x[i] << '\n';
+    out.close();
+    if (!out) {  // e.g. a full disk: no cache file rather than a truncated one
+      std::filesystem::remove(temporary, error);
+      return;
+    }
   }
   std::filesystem::rename(temporary, file, error);
   if (error) std::filesystem::remove(temporary, error);

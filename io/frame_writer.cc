@@ -48,7 +48,9 @@ FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
-    throw InputError("output", output, "cannot create directory '" + directory + "'");
+    throw InputError("output", output,
+                     "cannot create directory '" + directory +
+                         "': " + (error ? error.message() : std::string("not a directory")));
   }
   series_ =
       std::make_unique<PvdSeries>((std::filesystem::path(directory) / "run.pvd").string(), output);

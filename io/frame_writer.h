@@ -27,12 +27,13 @@ namespace ipstep {
 
 class FrameWriter {
  public:
-  // Creates DIR if needed. Throws InputError "output: <output>: ..." if it
-  // cannot, or cannot write a file there (`output`: the caller's name for the
-  // series).
+  // Creates DIR if needed. Throws InputError "output: <output>: cannot create
+  // directory ..." if it cannot, OutputError (io/output_file.h) if it cannot
+  // write DIR/run.pvd (`output`: the caller's name for the series).
   FrameWriter(const std::string& directory, const Simulation& sim,
               const std::string& output = "frames");
-  // Writes the simulation's current state as frame `frame` (e.g. the step).
+  // Writes the simulation's current state as frame `frame` (e.g. the step);
+  // throws OutputError if a file cannot be opened or written.
   void Write(int frame);
 
  private:

@@ -2,24 +2,21 @@
 
 #include <iomanip>
 
-#include "core/input_error.h"
-
 namespace ipstep {
 
 PositionsFile::PositionsFile(const std::string& path, const std::string& output)
-    : path_(path), output_(output), out_(path) {
-  if (!out_) throw InputError("output", output_, "cannot write '" + path_ + "'");
-}
+    : file_(path, "output: " + output) {}
 
 void PositionsFile::Write(const State& s) {
-  out_ << std::setprecision(17) << (s.dimension == 2 ? "node,x,y\n" : "node,x,y,z\n");
+  std::ostream& out = file_.stream();
+  out << std::setprecision(17) << (s.dimension == 2 ? "node,x,y\n" : "node,x,y,z\n");
   for (int i = 0; i < s.num_nodes(); ++i) {
-    out_ << i;
-    for (int k = 0; k < s.dimension; ++k) out_ << ',' << s.x[s.dimension * i + k];
-    out_ << '\n';
+    out << i;
+    for (int k = 0; k < s.dimension; ++k) out << ',' << s.x[s.dimension * i + k];
+    out << '\n';
   }
-  out_.flush();
-  if (!out_) throw InputError("output", output_, "cannot write '" + path_ + "'");
+  file_.EndRow();
+  file_.Close();
 }
 
 void WritePositionsCsv(const State& state, const std::string& path, const std::string& output) {

@@ -3,28 +3,29 @@
 // (e.g. 0 the body, 1 the obstacles) is a block of its own.
 #pragma once
 
-#include <fstream>
+#include <ios>
 #include <string>
+
+#include "io/output_file.h"
 
 namespace ipstep {
 
 class PvdSeries {
  public:
   // Creates the .pvd at `path` (an empty collection); the data files are named
-  // relative to its directory. Throws InputError naming `output` if it cannot be
-  // written.
+  // relative to its directory. Throws OutputError naming `output` if it cannot
+  // be opened (kOpen) or written (kWrite).
   PvdSeries(const std::string& path, const std::string& output);
   // Adds `file` (relative to the .pvd's directory) as part `part` at `time`
   // [s]. The .pvd is complete after every call (also when a run stops there):
   // the entry is written over the closing tags, which follow it again.
+  // Throws OutputError (kWrite) if the file cannot be written.
   void Add(double time, int part, const std::string& file);
 
  private:
   void WriteClosingTags();
 
-  std::string path_;
-  std::string output_;
-  std::ofstream out_;
+  OutputFile file_;
   std::streampos end_of_entries_;
 };
 

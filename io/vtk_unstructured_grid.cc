@@ -1,11 +1,10 @@
 #include "io/vtk_unstructured_grid.h"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 
-#include "core/input_error.h"
+#include "io/output_file.h"
 
 namespace ipstep {
 
@@ -20,7 +19,7 @@ namespace {
 // state is visible in the run's CSV and status, not in its picture).
 double Finite(double value) { return std::isfinite(value) ? value : 0.0; }
 
-void WriteVectors(std::ofstream& out, const std::vector<Eigen::Vector3d>& vectors) {
+void WriteVectors(std::ostream& out, const std::vector<Eigen::Vector3d>& vectors) {
   for (const Eigen::Vector3d& v : vectors) {
     out << Finite(v[0]) << ' ' << Finite(v[1]) << ' ' << Finite(v[2]) << '\n';
   }
@@ -29,8 +28,8 @@ void WriteVectors(std::ofstream& out, const std::vector<Eigen::Vector3d>& vector
 }  // namespace
 
 void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output) {
-  std::ofstream out(path);
-  if (!out) throw InputError("output", output, "cannot write '" + path + "'");
+  OutputFile file(path, "output: " + output);
+  std::ostream& out = file.stream();
   out << std::setprecision(std::numeric_limits<double>::max_digits10);
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -67,7 +66,7 @@ void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& o
   out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (VtkCell type : mesh.types) out << static_cast<int>(type) << '\n';
   out << "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw InputError("output", output, "cannot write '" + path + "'");
+  file.Close();
 }
 
 }  // namespace ipstep

@@ -33,8 +33,8 @@ struct VtkMesh {
   void AddCell(VtkCell type, std::vector<int> points);
 };
 
-// Writes `mesh` to `path`. Throws InputError naming `output` if the file cannot
-// be written.
+// Writes `mesh` to `path`. Throws OutputError (io/output_file.h) naming
+// `output` if the file cannot be opened (kOpen) or written (kWrite).
 void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output);
 
 }  // namespace ipstep

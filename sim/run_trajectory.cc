@@ -41,6 +41,8 @@ const char* RunTerminationName(RunTermination termination) {
       return "timeout";
     case RunTermination::kStepLimit:
       return "step limit";
+    case RunTermination::kInterrupted:
+      return "interrupted";
   }
   return "?";
 }
@@ -109,6 +111,10 @@ class StepRecorder {
       run.termination = run.diverged() ? RunTermination::kDiverged : RunTermination::kStepFailed;
       return true;
     }
+    if (options_.interrupt != nullptr && *options_.interrupt != 0 && more_to_come) {
+      run.termination = RunTermination::kInterrupted;
+      return true;
+    }
     if (options_.max_wall_seconds > 0.0 && more_to_come &&
         Since(start_) > options_.max_wall_seconds) {
       run.termination = RunTermination::kTimeout;
@@ -138,6 +144,9 @@ class StepRecorder {
       case RunTermination::kStepLimit:
         run.message = "stopped after " + std::to_string(run.steps_done) +
                       " steps, the most a run takes, before the end time";
+        break;
+      case RunTermination::kInterrupted:
+        run.message = "interrupted at step " + std::to_string(run.steps_done);
         break;
     }
   }

@@ -6,6 +6,7 @@
 //   std::printf("%s\n", run.message.c_str());
 #pragma once
 
+#include <csignal>
 #include <functional>
 #include <string>
 
@@ -28,6 +29,10 @@ struct RunOptions {
   // Stop once the loop has run this long [s] with steps left (kTimeout); 0: no
   // limit.
   double max_wall_seconds = 0.0;
+  // Stop after the step in progress once this points to a non-zero value
+  // (kInterrupted): e.g. a flag a SIGINT handler sets (apps/run_signals.h).
+  // Read between steps only; nullptr: never.
+  const volatile std::sig_atomic_t* interrupt = nullptr;
   // Called before step k (1-based, counting this run's steps) and after it with
   // its report (status "diverged: ..." once the run diverged). May be empty.
   std::function<void(int step)> before_step;
@@ -42,13 +47,15 @@ struct RunOptions {
 };
 
 enum class RunTermination {
-  kCompleted,   // every planned step taken (failed steps, if any, are counted)
-  kStepFailed,  // stopped at a failed step (RunOptions::stop_on_failure)
-  kDiverged,    // stopped at a diverged step (RunOptions::stop_on_divergence)
-  kTimeout,     // stopped by RunOptions::max_wall_seconds
-  kStepLimit,   // an adaptive run took the most steps a run takes (10^7) before its end
+  kCompleted,    // every planned step taken (failed steps, if any, are counted)
+  kStepFailed,   // stopped at a failed step (RunOptions::stop_on_failure)
+  kDiverged,     // stopped at a diverged step (RunOptions::stop_on_divergence)
+  kTimeout,      // stopped by RunOptions::max_wall_seconds
+  kStepLimit,    // an adaptive run took the most steps a run takes (10^7) before its end
+  kInterrupted,  // stopped by RunOptions::interrupt, after its last step's after_step
 };
-const char* RunTerminationName(RunTermination termination);  // completed, step failed, ...
+// completed, step failed, diverged, timeout, step limit, interrupted
+const char* RunTerminationName(RunTermination termination);
 
 struct RunSummary {
   bool adaptive = false;

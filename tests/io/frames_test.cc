@@ -298,7 +298,8 @@ TEST_F(Frames, UnwritableDirectoryIsAnInputError) {
   }
 }
 
-// The CSV writers name the output as their caller does, with the path.
+// The CSV writers name the output as their caller does, with the path and the
+// system's reason.
 TEST_F(Frames, UnwritableFilesNameTheOutput) {
   const ipstep::Scene scene = Load("oscillator");
   ipstep::Simulation sim(scene, {});
@@ -307,8 +308,11 @@ TEST_F(Frames, UnwritableFilesNameTheOutput) {
     try {
       write();
       ADD_FAILURE() << "no error for " << name;
-    } catch (const ipstep::InputError& e) {
-      EXPECT_EQ(std::string(e.what()), "output: " + name + ": cannot write '" + path + "'");
+    } catch (const ipstep::OutputError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "output: " + name + ": cannot write '" + path + "': No such file or directory");
+      EXPECT_EQ(e.kind(), ipstep::OutputError::Kind::kOpen);
+      EXPECT_EQ(e.path(), path);
     }
   };
   expect_error([&] { ipstep::StatsWriter writer(path, "stats"); }, "stats");

@@ -3,6 +3,7 @@
 // or exactly 0 are not called diverged; a blow-up is, within a few steps of
 // its first non-physical energy, and every later step says so.
 #include <cmath>
+#include <csignal>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -189,6 +190,37 @@ TEST(RunTrajectory, CountsPerStepTakenAndStopsWhereAsked) {
   EXPECT_NEAR(limited.ms_per_step(), 1e3 * limited.step_seconds, 1e-12);
   options.steps = -2;
   EXPECT_THROW(RunTrajectory(sim, options), InputError);
+}
+
+// An interrupt (a flag a signal handler sets) stops the run after the step in
+// progress, its after_step included; a flag set during the last step leaves
+// the run completed.
+TEST(RunTrajectory, AnInterruptStopsAfterTheStepInProgress) {
+  Simulation sim(testing::OscillatorScene(), Options("backward_euler", "newton", 0.1, 1e-8));
+  volatile std::sig_atomic_t interrupt = 0;
+  RunOptions options;
+  options.steps = 10;
+  options.interrupt = &interrupt;
+  int after = 0;
+  options.after_step = [&](const StepReport& r) {
+    ++after;
+    if (r.step == 3) interrupt = SIGINT;
+  };
+  const RunSummary run = RunTrajectory(sim, options);
+  EXPECT_EQ(run.termination, RunTermination::kInterrupted);
+  EXPECT_EQ(run.steps_done, 3);
+  EXPECT_EQ(after, 3);
+  EXPECT_EQ(run.message, "interrupted at step 3");
+  EXPECT_STREQ(RunTerminationName(run.termination), "interrupted");
+  EXPECT_NEAR(sim.state().time, 0.3, 1e-12);
+  interrupt = 0;
+  options.steps = 2;
+  options.after_step = [&](const StepReport& r) {
+    if (r.step == 2) interrupt = SIGTERM;
+  };
+  const RunSummary last = RunTrajectory(sim, options);
+  EXPECT_EQ(last.termination, RunTermination::kCompleted) << last.message;
+  EXPECT_EQ(last.steps_done, 2);
 }
 
 TEST(RunTrajectory, StopOnFailureStopsAtTheFirstFailedStep) {

@@ -18,8 +18,11 @@ struct ProgramOutcome {
   std::string output;
 };
 
-inline ProgramOutcome RunProgram(const std::string& binary, const std::string& arguments) {
-  const std::string command = binary + " " + arguments + " 2>&1";
+// `redirect`: the shell redirections of the command ("2>&1 >/dev/full": stdout
+// to /dev/full, the outcome's output stderr alone).
+inline ProgramOutcome RunProgram(const std::string& binary, const std::string& arguments,
+                                 const std::string& redirect = "2>&1") {
+  const std::string command = binary + " " + arguments + " " + redirect;
   ProgramOutcome outcome;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return outcome;
