@@ -260,8 +260,6 @@ SimplexMesh ReadExplicit(const Value& mesh, int dim, std::string* description) {
     for (const Value& index : element.Elements(dim + 1)) e[a++] = index.Int(0, n - 1);
     result.elements.push_back(e);
   }
-  const std::string problem = CheckMesh(result);
-  if (!problem.empty()) mesh.Get("elements").Fail(problem);
   AddStandardNodeSets(&result);
   *description = "explicit mesh";
   return result;

@@ -23,8 +23,8 @@ struct RejectCase {
 };
 
 const RejectCase kCases[] = {
-    {"repeated_triangle.json", "solid.mesh.elements", "element 2 repeats element 0"},
-    {"repeated_tetrahedron.json", "solid.mesh.elements", "element 1 repeats element 0"},
+    {"repeated_triangle.json", "solid.mesh", "element 2 repeats element 0"},
+    {"repeated_tetrahedron.json", "solid.mesh", "element 1 repeats element 0"},
     {"repeated_element_msh.json", "solid.mesh.file", "element 2 repeats element 0"},
     {"repeated_surface_edge.json", "surface.edges[3]", "repeats surface.edges[0]"},
     {"repeated_surface_triangle.json", "surface.triangles[1]", "repeats surface.triangles[0]"},
