@@ -13,7 +13,9 @@ Exit code 1 if a target does not hold (listed after the table):
     beyond the program's energy balance (its status would say so; checked
     here: energy_growth of converged steps finite);
   * with newton (the default optimiser), the feasible scenes (FEASIBLE below)
-    fail at most 5 % of their steps.
+    fail at most 5 % of their steps;
+  * every reject scene (problems/hard/reject/*.json: what cannot be a body)
+    exits with 2 and one error line naming its file (both subsets).
 Needs only the Python standard library.
 """
 import argparse
@@ -56,6 +58,20 @@ FEASIBLE = {"gap", "offset", "wedge", "squeeze_fast/backward_euler", "thrown_sta
             "drop h=0.1", "impact 60 m/s", "impact 300 m/s", "impact 1000 m/s",
             "impact 1000 m/s, d_hat 1e-4", "slope 2000 steps", "drop 2000 steps"}
 CI = {"gap", "offset", "thrown_stack", "drop h=0.1", "impact 300 m/s"}
+
+
+REJECT = os.path.join(HARD, "reject")
+
+
+def reject_scenes():
+    return sorted(f for f in os.listdir(REJECT) if f.endswith(".json"))
+
+
+def run_reject(ipstep, name):
+    done = subprocess.run([ipstep, "--scene=" + os.path.join(REJECT, name), "--noprogress"],
+                          capture_output=True, text=True, timeout=120)
+    lines = (done.stdout + done.stderr).strip().splitlines()
+    return {"name": name, "exit": done.returncode, "lines": lines}
 
 
 def scene_path(scene):
@@ -149,12 +165,22 @@ def main():
             result["label"] in FEASIBLE or f'{result["label"]}/{result["integrator"]}' in FEASIBLE)
         if feasible and s["failed"] > 0.05 * max(1, s["steps"]):
             problems.append(f'{name}: {s["failed"]} of {s["steps"]} steps failed (feasible scene)')
+    print("\n| reject scene | exit | error |")
+    print("|---|---:|---|")
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        rejects = list(pool.map(lambda name: run_reject(args.ipstep, name), reject_scenes()))
+    for r in rejects:
+        line = r["lines"][-1] if r["lines"] else ""
+        print(f'| {r["name"]} | {r["exit"]} | `{line}` |')
+        if r["exit"] != 2 or len(r["lines"]) != 1 or r["name"] + ": " not in line:
+            problems.append(f'reject/{r["name"]}: exit {r["exit"]}, not one error line naming '
+                            f'the file: {r["lines"][-3:]}')
     if problems:
         print("\nTargets not met:")
         for p in problems:
             print("  " + p)
         sys.exit(1)
-    print(f"\nAll targets met ({len(results)} runs).")
+    print(f"\nAll targets met ({len(results)} runs, {len(rejects)} reject scenes).")
 
 
 if __name__ == "__main__":

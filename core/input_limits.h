@@ -18,9 +18,17 @@
 namespace ipstep::limits {
 
 // ---- Scenes (problems/scene_loader.cc) ------------------------------------
+// Nodes of a scene, from every node source (explicit nodes, chains, grids,
+// solids' meshes): the scale every other bound here is chosen for.
+constexpr long long kMaxNodes = 1000000;
 // Every position component, also of generated nodes and obstacles [m]: at
 // 10^6 m double coordinates still resolve 10^-10 m, below kMinLength.
 constexpr double kMaxCoordinate = 1e6;
+// Every side and radius of a shape meshed by Gmsh [m]: OpenCASCADE's
+// geometric tolerance is 1e-7 m; it refuses rectangles and boxes of sides
+// 1e-7 m, and a ball of radius 3e-8 m makes Gmsh throw inside an OpenMP
+// region, which aborts the program (no catch can stop it).
+constexpr double kMinGmshLength = 1e-6;
 // Spring rest lengths and generated spring lengths [m]; the upper bound is above
 // any distance within the coordinate range (2·10^6·√3).
 constexpr double kMinLength = 1e-9;

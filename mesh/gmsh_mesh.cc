@@ -12,6 +12,7 @@
 
 #include <gmshc.h>  // declarations only: the library is loaded on first use
 
+#include "core/input_file.h"
 #include "mesh/mesh_boundary.h"
 
 namespace ipstep {
@@ -30,7 +31,8 @@ struct GmshApi {
   X(ModelOccSynchronize) X(ModelAddPhysicalGroup) X(ModelSetPhysicalName)                \
   X(ModelGetBoundary) X(ModelGetBoundingBox) X(ModelMeshGenerate) X(ModelMeshGetElements) \
   X(ModelMeshGetElementProperties) X(ModelMeshGetNodes) X(ModelGetPhysicalGroups)        \
-  X(ModelGetPhysicalName) X(ModelMeshGetNodesForPhysicalGroup) X(LoggerGetLastError)
+  X(ModelGetPhysicalName) X(ModelMeshGetNodesForPhysicalGroup) X(LoggerGetLastError)       \
+  X(ModelMeshGetElementTypes)
 // clang-format on
 #define IPSTEP_GMSH_MEMBER(name) decltype(&gmsh##name) name = nullptr;
   IPSTEP_GMSH_FUNCTIONS(IPSTEP_GMSH_MEMBER)
@@ -156,6 +158,16 @@ SimplexMesh ExtractMesh(int dimension, const std::string& what, const GmshSessio
   api.Free(node_tags);
   api.Free(node_tags_n);
 
+  if (dimension == 2) {
+    // A 3D mesh read by a 2D scene would silently give its z = 0 triangles.
+    GmshArray<int> solid_types;
+    api.ModelMeshGetElementTypes(&solid_types.data, &solid_types.size, 3, -1, &ierr);
+    check(ierr);
+    if (solid_types.size > 0) {
+      throw std::runtime_error(what + " has 3D elements: a 2D scene needs a 2D mesh (" +
+                               "3-node triangles only)");
+    }
+  }
   const int expected = dimension == 2 ? 2 : 4;  // MSH types: 3-node triangle, 4-node tetrahedron
   const char* expected_name = dimension == 2 ? "3-node triangles" : "4-node tetrahedra";
   if (types.size == 0) {
@@ -304,34 +316,68 @@ void MeshShape(const GmshShape& s, const GmshSession& check) {
   check(ierr);
 }
 
+// Runs `work` at the Gmsh call boundary: whatever Gmsh throws (it throws
+// std::string in some paths, and may throw anything else) becomes one
+// std::runtime_error starting with `what`. (A throw inside one of Gmsh's
+// OpenMP regions cannot be caught; the loaders keep shapes out of the sizes
+// where that happens: core/input_limits.h, kMinGmshLength.)
+template <typename Work>
+auto AtGmshBoundary(const std::string& what, Work work) -> decltype(work()) {
+  try {
+    return work();
+  } catch (const std::runtime_error&) {
+    throw;
+  } catch (const std::string& message) {
+    throw std::runtime_error(what + ": " + message);
+  } catch (const char* message) {
+    throw std::runtime_error(what + ": " + std::string(message != nullptr ? message : ""));
+  } catch (const std::exception& error) {
+    throw std::runtime_error(what + ": " + error.what());
+  } catch (...) {
+    throw std::runtime_error(what + ": Gmsh failed (an unknown exception)");
+  }
+}
+
 }  // namespace
 
 SimplexMesh GmshGenerate(const GmshShape& shape) {
-  GmshSession session("Gmsh");
-  MeshShape(shape, session);
-  return ExtractMesh(shape.dimension, "the Gmsh " + shape.name, session);
+  return AtGmshBoundary("Gmsh", [&] {
+    GmshSession session("Gmsh");
+    MeshShape(shape, session);
+    return ExtractMesh(shape.dimension, "the Gmsh " + shape.name, session);
+  });
 }
 
 void GmshWriteShape(const GmshShape& shape, const std::string& path, double version) {
-  GmshSession session("Gmsh could not write " + path);
-  MeshShape(shape, session);
-  int ierr = 0;
-  Api().OptionSetNumber("Mesh.MshFileVersion", version, &ierr);
-  session(ierr);
-  Api().Write(path.c_str(), &ierr);
-  session(ierr);
+  AtGmshBoundary("Gmsh could not write " + path, [&] {
+    GmshSession session("Gmsh could not write " + path);
+    MeshShape(shape, session);
+    int ierr = 0;
+    Api().OptionSetNumber("Mesh.MshFileVersion", version, &ierr);
+    session(ierr);
+    Api().Write(path.c_str(), &ierr);
+    session(ierr);
+  });
 }
 
 SimplexMesh GmshRead(const std::string& path, int dimension) {
+  // Not a directory, device or pipe (/dev/zero or a FIFO would never end),
+  // and no NUL byte (Gmsh would read the file named by the part before it).
+  const std::string problem = InputFileProblem(path);
+  if (!problem.empty())
+    throw std::runtime_error("cannot read mesh file " + path.substr(0, path.find('\0')) + ": " +
+                             problem);
   {
     std::ifstream probe(path);
     if (!probe) throw std::runtime_error("cannot open mesh file " + path);
   }
-  GmshSession session("Gmsh could not read " + path);
-  int ierr = 0;
-  Api().Open(path.c_str(), &ierr);
-  session(ierr);
-  return ExtractMesh(dimension, path, session);
+  return AtGmshBoundary("Gmsh could not read " + path, [&] {
+    GmshSession session("Gmsh could not read " + path);
+    int ierr = 0;
+    Api().Open(path.c_str(), &ierr);
+    session(ierr);
+    return ExtractMesh(dimension, path, session);
+  });
 }
 
 }  // namespace ipstep

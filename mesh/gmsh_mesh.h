@@ -5,8 +5,10 @@
 // plane), 4-node tetrahedra in 3D. Elements of lower dimension (boundary
 // lines and triangles, points) are ignored except through the physical groups
 // they carry. Errors (unreadable file, no elements of the dimension, mixed or
-// unsupported element types, higher order) are std::runtime_error with one
-// sentence. Elements are reoriented to positive orientation (Gmsh orients
+// unsupported element types, higher order, 3D elements in a file read as 2D,
+// a path that is not a regular file or holds a NUL byte) are
+// std::runtime_error with one sentence; so is anything Gmsh throws (it throws
+// std::string in some paths). Elements are reoriented to positive orientation (Gmsh orients
 // surface triangles by their surface's normal, which may be -z); an element
 // of zero measure is rejected later (CheckMesh).
 //

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <utility>
 
 namespace ipstep {
@@ -80,6 +81,18 @@ std::string CheckMesh(const SimplexMesh& mesh) {
              ")";
     }
   }
+  // An element listed twice (its nodes in any order) would make each of its
+  // facets seen twice, i.e. interior: the body would lose its surface.
+  std::map<std::array<int, 4>, int> first;  // sorted nodes -> first element
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    std::array<int, 4> key = mesh.elements[e];
+    std::sort(key.begin(), key.begin() + dim + 1);
+    const auto [it, inserted] = first.emplace(key, e);
+    if (!inserted) {
+      return "element " + std::to_string(e) + " repeats element " + std::to_string(it->second) +
+             " (the same nodes)";
+    }
+  }
   for (int i = 0; i < n; ++i) {
     if (!used[i]) return "node " + std::to_string(i) + " belongs to no element";
   }
@@ -105,6 +118,12 @@ std::vector<double> LumpedMasses(const SimplexMesh& mesh, double density) {
     for (int a = 0; a < corners; ++a) masses[mesh.elements[e][a]] += share;
   }
   return masses;
+}
+
+std::vector<double> UniformMasses(const SimplexMesh& mesh, double density) {
+  double measure = 0.0;
+  for (int e = 0; e < mesh.num_elements(); ++e) measure += std::abs(SignedMeasure(mesh, e));
+  return std::vector<double>(mesh.num_nodes(), density * measure / mesh.num_nodes());
 }
 
 }  // namespace ipstep

@@ -52,4 +52,8 @@ int OrientPositively(SimplexMesh* mesh);
 // each of its nodes.
 std::vector<double> LumpedMasses(const SimplexMesh& mesh, double density);
 
+// Uniform masses: every node gets density * TotalMeasure / num_nodes (the
+// same total as LumpedMasses).
+std::vector<double> UniformMasses(const SimplexMesh& mesh, double density);
+
 }  // namespace ipstep

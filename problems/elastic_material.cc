@@ -27,4 +27,18 @@ bool ParseElasticModel(const std::string& name, ElasticModel* model) {
   return false;
 }
 
+const char* MassDistributionName(MassDistribution masses) {
+  return masses == MassDistribution::kUniform ? "uniform" : "lumped";
+}
+
+bool ParseMassDistribution(const std::string& name, MassDistribution* masses) {
+  for (MassDistribution m : {MassDistribution::kLumped, MassDistribution::kUniform}) {
+    if (name == MassDistributionName(m)) {
+      *masses = m;
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace ipstep

@@ -28,12 +28,23 @@ const char* ElasticModelName(ElasticModel model);
 // False for an unknown name.
 bool ParseElasticModel(const std::string& name, ElasticModel* model);
 
+// How a solid's mass is given to its nodes: lumped (each element gives
+// density * measure / (d + 1) to each of its nodes) or uniform (every node
+// the body's total mass / node count, as the course code's section 6 does).
+enum class MassDistribution { kLumped, kUniform };
+
+// "lumped", "uniform".
+const char* MassDistributionName(MassDistribution masses);
+// False for an unknown name.
+bool ParseMassDistribution(const std::string& name, MassDistribution* masses);
+
 struct ElasticMaterial {
   ElasticModel model = ElasticModel::kNeoHookean;
   double youngs_modulus = 1e5;  // E [Pa]
   double poisson_ratio = 0.3;   // nu, in (-1, 0.5)
   double density = 1000.0;      // rho [kg/m^d]: kg/m^2 in 2D (per unit thickness), kg/m^3 in 3D
   bool plane_stress = false;    // 2D only
+  MassDistribution masses = MassDistribution::kLumped;
 
   double mu() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
   // lambda, or lambda* for plane stress in 2D.

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/input_file.h"
 #include "core/input_limits.h"
 #include "core/json_node.h"
 #include "mesh/mesh_boundary.h"
@@ -37,7 +38,7 @@ using nlohmann::json;
 
 // Upper bound on the number of nodes, so that a typo such as "nx": 200000
 // gives an error instead of exhausting memory.
-constexpr int64_t kMaxNodes = 1000000;
+constexpr int64_t kMaxNodes = limits::kMaxNodes;
 
 // Upper bound on the size of a scene file (a 1000 x 1000 grid written out as
 // explicit nodes and springs takes about 100 MB).
@@ -182,14 +183,10 @@ class KeyPathTracker {
 // /dev/zero, which never ends) of at most kMaxSceneFileBytes.
 std::string ReadTextFile(const std::string& path) {
   namespace fs = std::filesystem;
+  const std::string problem = InputFileProblem(path);
+  if (!problem.empty()) throw InputError(path + ": cannot read scene file: " + problem);
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
-  if (fs::is_directory(status)) {
-    throw InputError(path + ": cannot read scene file: is a directory");
-  }
-  if (fs::exists(status) && !fs::is_regular_file(status)) {
-    throw InputError(path + ": cannot read scene file: not a regular file");
-  }
   const std::string too_large = path + ": cannot read scene file: larger than the limit of " +
                                 std::to_string(kMaxSceneFileBytes >> 20) + " MiB";
   if (fs::exists(status) && fs::file_size(path, error) > kMaxSceneFileBytes && !error) {
@@ -370,7 +367,7 @@ class SceneParser {
     layout_ = Layout::kSolid;
     RequireEffect(solid, "elasticity");
     auto data = std::make_shared<Solid>(ReadSolid(solid.value(), dim(), source_, solid.path()));
-    const std::vector<double> masses = LumpedMasses(data->mesh, data->material.density);
+    const std::vector<double>& masses = data->masses;  // lumped or uniform, range-checked
     for (int i = 0; i < data->mesh.num_nodes(); ++i) {
       const double* x = data->mesh.positions.data() + dim() * i;
       AddNode(std::vector<double>(x, x + dim()), masses[i]);
@@ -654,9 +651,18 @@ class SceneParser {
       }
       return nodes;
     };
+    // An edge or triangle listed twice (its nodes in any order) would be in
+    // contact twice over; it is an error naming both entries.
+    std::map<std::vector<int>, std::string> seen;  // sorted nodes -> first entry
+    const auto check_repeat = [&](const JsonNode& entry, std::vector<int> nodes) {
+      std::sort(nodes.begin(), nodes.end());
+      const auto [it, inserted] = seen.emplace(nodes, entry.path());
+      if (!inserted) entry.Fail("repeats " + it->second + " (the same nodes)");
+    };
     if (auto edges = surface->Find("edges")) {
       for (const JsonNode& entry : edges->Elements()) {
         const std::vector<int> n = read_entry(entry, 2);
+        check_repeat(entry, n);
         declared.edges.push_back({n[0], n[1]});
       }
     }
@@ -664,6 +670,7 @@ class SceneParser {
       if (dim() != 3) triangles->Fail("are only allowed when \"dimension\" is 3");
       for (const JsonNode& entry : triangles->Elements()) {
         const std::vector<int> n = read_entry(entry, 3);
+        check_repeat(entry, n);
         declared.triangles.push_back({n[0], n[1], n[2]});
       }
     }

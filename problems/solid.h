@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "mesh/simplex_mesh.h"
 #include "problems/elastic_material.h"
@@ -14,7 +15,8 @@ namespace ipstep {
 struct Solid {
   SimplexMesh mesh;
   ElasticMaterial material;
-  std::string description;  // where the mesh came from, for reports
+  std::string description;     // where the mesh came from, for reports
+  std::vector<double> masses;  // per node [kg]: lumped or uniform (material.masses)
 };
 
 }  // namespace ipstep

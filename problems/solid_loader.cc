@@ -112,6 +112,11 @@ class Value {
     }
     return p;
   }
+  // A side or radius of a Gmsh shape (OpenCASCADE's tolerance sets the floor).
+  double GmshLength() const {
+    return Range(limits::kMinGmshLength, limits::kMaxLength, false, false,
+                 "m (Gmsh shapes: OpenCASCADE's tolerance is 1e-7 m)");
+  }
   const std::string& path() const { return path_; }
 
  private:
@@ -138,6 +143,12 @@ SimplexMesh ReadStructured(const Value& mesh, int dim, std::string* description)
   if (count > kMaxCells) {
     mesh.Get("cells").Fail("gives " + std::to_string(count) + " cells, more than " +
                            std::to_string(kMaxCells));
+  }
+  int64_t nodes = 1;
+  for (int c : cells) nodes *= c + 1;
+  if (nodes > limits::kMaxNodes) {
+    mesh.Get("cells").Fail("gives " + std::to_string(nodes) + " nodes, more than the limit of " +
+                           std::to_string(limits::kMaxNodes));
   }
   std::vector<double> origin(dim, 0.0);
   if (mesh.Has("origin")) origin = mesh.Get("origin").Point(dim);
@@ -167,7 +178,8 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
   double extent = 0.0;
   if (box_like) {
     mesh.ExpectObject({"gmsh", "size", "origin", "element_size"});
-    const std::vector<double> size = mesh.Get("size").Lengths(dim);
+    std::vector<double> size;
+    for (const Value& v : mesh.Get("size").Elements(dim)) size.push_back(v.GmshLength());
     std::vector<double> origin(dim, 0.0);
     if (mesh.Has("origin")) origin = mesh.Get("origin").Point(dim);
     for (int k = 0; k < dim; ++k) {
@@ -180,8 +192,7 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
     std::vector<double> center(dim, 0.0);
     if (mesh.Has("center")) center = mesh.Get("center").Point(dim);
     for (int k = 0; k < dim; ++k) shape.origin[k] = center[k];
-    shape.radius =
-        mesh.Get("radius").Range(limits::kMinLength, limits::kMaxLength, false, false, "m");
+    shape.radius = mesh.Get("radius").GmshLength();
     extent = 2.0 * shape.radius;
   }
   const double min_relative = dim == 2 ? kMinRelativeElementSize2D : kMinRelativeElementSize3D;
@@ -189,13 +200,19 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
                            .Range(min_relative * extent, extent, false, false,
                                   "m (between " + Number(min_relative) +
                                       " times the shape's extent and the extent)");
+  SimplexMesh result;
   try {
-    SimplexMesh result = GmshGenerate(shape);
-    *description = "Gmsh " + shape.name + ", element size " + Number(shape.element_size);
-    return result;
+    result = GmshGenerate(shape);
   } catch (const std::runtime_error& e) {
     mesh.Fail(std::string("Gmsh could not mesh it: ") + e.what());
   }
+  if (result.num_nodes() > limits::kMaxNodes) {
+    mesh.Get("element_size")
+        .Fail("gives " + std::to_string(result.num_nodes()) + " nodes, more than the limit of " +
+              std::to_string(limits::kMaxNodes));
+  }
+  *description = "Gmsh " + shape.name + ", element size " + Number(shape.element_size);
+  return result;
 }
 
 SimplexMesh ReadMeshFile(const Value& mesh, int dim, const std::string& source,
@@ -203,14 +220,25 @@ SimplexMesh ReadMeshFile(const Value& mesh, int dim, const std::string& source,
   mesh.ExpectObject({"file"});
   const std::string file = mesh.Get("file").Str();
   std::filesystem::path path(file);
+  if (file.find('\0') != std::string::npos) {
+    mesh.Get("file").Fail("the path contains a NUL byte (at offset " +
+                          std::to_string(file.find('\0')) + ")");
+  }
   if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;
+  SimplexMesh result;
   try {
-    SimplexMesh result = GmshRead(path.string(), dim);
-    *description = "mesh file " + ClipInput(file);
-    return result;
+    result = GmshRead(path.string(), dim);
   } catch (const std::runtime_error& e) {
     mesh.Get("file").Fail(e.what());
   }
+  if (result.num_nodes() > limits::kMaxNodes) {
+    mesh.Get("file").Fail(ClipInput(file) + " has " + std::to_string(result.num_nodes()) +
+                          " nodes, more than the limit of " + std::to_string(limits::kMaxNodes));
+  }
+  const std::string problem = CheckMesh(result);
+  if (!problem.empty()) mesh.Get("file").Fail(ClipInput(file) + ": " + problem);
+  *description = "mesh file " + ClipInput(file);
+  return result;
 }
 
 SimplexMesh ReadExplicit(const Value& mesh, int dim, std::string* description) {
@@ -218,7 +246,10 @@ SimplexMesh ReadExplicit(const Value& mesh, int dim, std::string* description) {
   SimplexMesh result;
   result.dimension = dim;
   const std::vector<Value> nodes = mesh.Get("nodes").Elements();
-  if (static_cast<int64_t>(nodes.size()) > kMaxCells) mesh.Get("nodes").Fail("too many nodes");
+  if (static_cast<int64_t>(nodes.size()) > limits::kMaxNodes) {
+    mesh.Get("nodes").Fail("lists " + std::to_string(nodes.size()) +
+                           " nodes, more than the limit of " + std::to_string(limits::kMaxNodes));
+  }
   for (const Value& node : nodes) {
     for (double c : node.Point(dim)) result.positions.push_back(c);
   }
@@ -239,7 +270,8 @@ SimplexMesh ReadExplicit(const Value& mesh, int dim, std::string* description) {
 Solid ReadSolid(const json& value, int dimension, const std::string& source,
                 const std::string& path) {
   const Value solid(value, path, source);
-  solid.ExpectObject({"mesh", "model", "youngs_modulus", "poisson_ratio", "density", "plane"});
+  solid.ExpectObject(
+      {"mesh", "model", "youngs_modulus", "poisson_ratio", "density", "plane", "masses"});
   Solid result;
   ElasticMaterial& material = result.material;
   if (solid.Has("model")) {
@@ -285,6 +317,27 @@ Solid ReadSolid(const json& value, int dimension, const std::string& source,
   }
   const std::string problem = CheckMesh(result.mesh);
   if (!problem.empty()) mesh.Fail(problem);
+
+  if (solid.Has("masses")) {
+    const std::string name = solid.Get("masses").Str();
+    if (!ParseMassDistribution(name, &material.masses)) {
+      solid.Get("masses").Fail("must be \"lumped\" or \"uniform\" (got \"" + ClipInput(name) +
+                               "\")");
+    }
+  }
+  result.masses = material.masses == MassDistribution::kUniform
+                      ? UniformMasses(result.mesh, material.density)
+                      : LumpedMasses(result.mesh, material.density);
+  // The limits every node source keeps (core/input_limits.h).
+  for (size_t i = 0; i < result.masses.size(); ++i) {
+    const double m = result.masses[i];
+    if (!(m >= limits::kMinMass && m <= limits::kMaxMass)) {
+      solid.Get("density").Fail("gives node " + std::to_string(i) + " a mass of " + Number(m) +
+                                " kg (" + MassDistributionName(material.masses) +
+                                " masses), which must be in " +
+                                limits::RangeText(limits::kMinMass, limits::kMaxMass, "kg"));
+    }
+  }
   return result;
 }
 

@@ -13,7 +13,15 @@
 //     "youngs_modulus": E > 0 [Pa], "poisson_ratio": nu in (-1, 0.5),
 //     "density": rho > 0 [kg/m^2 in 2D, kg/m^3 in 3D],
 //     "plane": "strain" | "stress"   (2D only; default strain)
+//     "masses": "lumped" | "uniform"   (default lumped: each element gives
+//               density * measure / (d + 1) to each of its nodes; uniform:
+//               every node density * total measure / node count)
 //   }
+//
+// Rejected as well: repeated elements (the same nodes in any order), a mesh
+// file of another dimension, not a regular file or with a NUL in its path,
+// more than limits::kMaxNodes nodes, node masses outside [kMinMass, kMaxMass],
+// Gmsh shapes smaller than limits::kMinGmshLength.
 //
 // Node sets, usable by name in "pinned" and "moving": structured meshes
 // "x_min", "x_max", "y_min", "y_max" ("z_min", "z_max"); Gmsh meshes their

@@ -2,12 +2,14 @@
 // conformity through the boundary, masses, node sets), and Gmsh: meshed
 // shapes (measure within the discretisation error, orientation), .msh files in
 // formats 2.2 and 4.1 with physical groups, and the errors for bad files.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +74,69 @@ TEST(CheckMesh, NamesTheBadElement) {
   EXPECT_EQ(CheckMesh(mesh), "");
   mesh.elements[2][1] = 99;
   EXPECT_EQ(CheckMesh(mesh).rfind("element 2 refers to node 99", 0), 0u);
+}
+
+// An element listed twice made all its facets interior (seen twice): the
+// body lost that part of its contact surface. Any order of its nodes repeats it.
+TEST(CheckMesh, RejectsRepeatedElements) {
+  SimplexMesh mesh = StructuredRectangle({0.0, 0.0}, {1.0, 1.0}, {1, 1});
+  ASSERT_EQ(mesh.num_elements(), 2);
+  const size_t facets = BoundaryFacets(mesh).size();
+  std::array<int, 4> again = mesh.elements[0];
+  std::swap(again[0], again[1]);
+  std::swap(again[1], again[2]);  // a rotation: still positively oriented
+  mesh.elements.push_back(again);
+  EXPECT_LT(BoundaryFacets(mesh).size(), facets);  // what the check prevents
+  EXPECT_EQ(CheckMesh(mesh), "element 2 repeats element 0 (the same nodes)");
+  SimplexMesh box = StructuredBox({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {1, 1, 1});
+  box.elements.push_back(box.elements[4]);
+  EXPECT_EQ(CheckMesh(box), "element 6 repeats element 4 (the same nodes)");
+}
+
+// Uniform masses: equal, with the lumped total (the body's mass).
+TEST(Masses, UniformMassesAreEqualWithTheLumpedTotal) {
+  const SimplexMesh mesh = StructuredRectangle({0.0, 0.0}, {1.0, 1.0}, {4, 4});
+  const std::vector<double> uniform = UniformMasses(mesh, 1000.0);
+  const std::vector<double> lumped = LumpedMasses(mesh, 1000.0);
+  ASSERT_EQ(uniform.size(), 25u);
+  double total_uniform = 0.0, total_lumped = 0.0;
+  for (size_t i = 0; i < uniform.size(); ++i) {
+    EXPECT_DOUBLE_EQ(uniform[i], 40.0);  // the course code's section 6: 1000 kg / 25 nodes
+    total_uniform += uniform[i];
+    total_lumped += lumped[i];
+  }
+  EXPECT_NEAR(total_uniform, 1000.0, 1e-9);
+  EXPECT_NEAR(total_lumped, 1000.0, 1e-9);
+  EXPECT_NE(lumped.front(), lumped[12]);  // lumping is not uniform: corner vs centre
+}
+
+// A 3D tetrahedral file read by a 2D scene took its z = 0 triangles.
+TEST(GmshFile, RejectsA3DMeshReadAs2D) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "ipstep_mesh_test_tet.msh").string();
+  std::ofstream(path) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+                         "2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n2\n"
+                         "1 2 2 1 1 1 2 3\n2 4 2 2 2 1 2 3 4\n$EndElements\n";
+  try {
+    GmshRead(path, 2);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("has 3D elements"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(GmshRead(path, 3).num_elements(), 1);
+  std::filesystem::remove(path);
+}
+
+// Devices and NUL bytes: one error, no read.
+TEST(GmshFile, RejectsDevicesAndNulBytes) {
+  for (const std::string& path : {std::string("/dev/zero"), std::string("a.msh\0b", 7)}) {
+    try {
+      GmshRead(path, 2);
+      ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("cannot read mesh file"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Gmsh, DiskAndBallHaveTheirMeasureAndPositiveElements) {
