@@ -86,7 +86,7 @@ std::string CheckMesh(const SimplexMesh& mesh) {
   std::map<std::array<int, 4>, int> first;  // sorted nodes -> first element
   for (int e = 0; e < mesh.num_elements(); ++e) {
     std::array<int, 4> key = mesh.elements[e];
-    std::sort(key.begin(), key.begin() + dim + 1);
+    std::sort(key.begin(), key.begin() + std::clamp(dim + 1, 1, 4));
     const auto [it, inserted] = first.emplace(key, e);
     if (!inserted) {
       return "element " + std::to_string(e) + " repeats element " + std::to_string(it->second) +
