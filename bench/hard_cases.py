@@ -50,14 +50,19 @@ CASES = [
     ("impact 1000 m/s, d_hat 1e-4", "impact_1000_dhat1e-4.json", [], BOTH),
     ("slope 2000 steps", "slope", ["--steps=2000"], BOTH),
     ("drop 2000 steps", "drop", ["--steps=2000"], BOTH),
+    ("node_ceiling", "node_ceiling.json", [], BOTH),
+    ("textbook_squash", "textbook_squash.json", ["--tolerance=1e-6"], BOTH),
+    ("impact h=1e-3", "impact", ["--dt=1e-3", "--steps=300"], ("newmark",)),
 ]
 # Scenes that can run through with the default optimiser (newton): at most
 # 5 % failed steps (with every integrator, or the one named).
 FEASIBLE = {"gap", "offset", "wedge", "squeeze_fast/backward_euler", "thrown_stack/backward_euler",
             "mass_ratio", "chain_quasi_static", "drop k=1e2", "drop k=1e8", "drop h=1e-6",
             "drop h=0.1", "impact 60 m/s", "impact 300 m/s", "impact 1000 m/s",
-            "impact 1000 m/s, d_hat 1e-4", "slope 2000 steps", "drop 2000 steps"}
-CI = {"gap", "offset", "thrown_stack", "drop h=0.1", "impact 300 m/s"}
+            "impact 1000 m/s, d_hat 1e-4", "slope 2000 steps", "drop 2000 steps", "node_ceiling",
+            "textbook_squash"}
+CI = {"gap", "offset", "thrown_stack", "drop h=0.1", "impact 300 m/s", "node_ceiling",
+      "textbook_squash"}
 
 
 REJECT = os.path.join(HARD, "reject")

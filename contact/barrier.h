@@ -11,7 +11,7 @@
 //   B'(d)  = 2 u ln(d/d_hat) - u^2 / d                        (< 0)
 //   B''(d) = -2 ln(d/d_hat) + 4 u / d + u^2 / d^2             (> 0)
 //
-// As a Ceres term (../shared/design-notes.md): the residual is the scalar gap
+// As a Ceres term: the residual is the scalar gap
 // violation u(x) = max(d_hat - d(x), 0) and the loss is
 //   rho(s) = 2 kappa w B(d_hat - sqrt(s)),   so   1/2 rho(u^2) = b(d).
 // Writing d = d_hat - u, u = sqrt(s):

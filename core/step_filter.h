@@ -1,7 +1,8 @@
 // A step filter keeps every iterate an optimiser accepts inside the feasible
 // set (e.g. contact: no penetration, no tunnelling). Ceres has no hook to cap a
 // step, so infeasibility is reported by failing the evaluation: the line search
-// backtracks, the trust region shrinks (../shared/design-notes.md).
+// backtracks, the trust region shrinks (tests/contact/contact_scenes_test.cc
+// checks every accepted iterate).
 //
 // Protocol, driven by the step solvers and the simulation:
 //   OnAccepted(x)      the start point of every solve and every accepted iterate;

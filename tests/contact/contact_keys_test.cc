@@ -3,6 +3,7 @@
 // contact.self_contact_kappa; prescribed nodes staged like moving obstacles
 // (sim/prescribed_staging.h); "moving boundary not reached"; a failed step
 // never leaves a state inside an obstacle.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -376,6 +377,45 @@ TEST(MovingBoundary, APenetratingStepGoesBackToItsStart) {
     EXPECT_EQ(sim.state().x[1], 0.01);
     EXPECT_NEAR(sim.state().time, 0.01 * step, 1e-15);
   }
+}
+
+// The textbook's section 6 (problems/hard/textbook_squash.json): a stopping
+// ceiling without friction, friction on the ground only, uniform masses. At
+// the textbook's h = 0.01 s and a tolerance of 1e-6 m/s every step converges
+// at the full step, nothing penetrates or inverts, and the square ends pressed
+// between the ground (y = -1) and the ceiling where it stopped (y = -0.7).
+TEST(TextbookSectionSix, StoppingCeilingAndPerContactFrictionAtTheFullStep) {
+  SceneLoadOptions load;
+  load.extra_effects = DefaultEffects().UserNames();
+  const Scene scene =
+      LoadScene(std::string(IPSTEP_SOURCE_DIR) + "/problems/hard/textbook_squash.json", load);
+  for (double m : scene.masses) EXPECT_DOUBLE_EQ(m, 40.0);  // 1000 kg over 25 nodes
+  SimulationOptions options = Options(1e-6);
+  options.max_substeps = 16;
+  Simulation sim(scene, options);
+  const std::vector<std::string> names = sim.DiagnosticNames();
+  const size_t min_j = std::find(names.begin(), names.end(), "min_J") - names.begin();
+  ASSERT_LT(min_j, names.size());
+  int failed = 0, substepped = 0;
+  for (int step = 0; step < 300; ++step) {
+    const StepReport r = sim.Step();
+    failed += !r.converged;
+    substepped += r.substeps > 1;
+    EXPECT_GT(r.diagnostics[min_j], 0.0) << "step " << r.step;
+    ASSERT_EQ(Filter(sim).FindPenetration(sim.state().x.data(), sim.state().time), "")
+        << "step " << r.step;
+  }
+  EXPECT_EQ(failed, 0);
+  EXPECT_EQ(substepped, 0);
+  double top = -INFINITY, bottom = INFINITY;
+  for (int i = 0; i < sim.state().num_nodes(); ++i) {
+    top = std::max(top, sim.state().x[2 * i + 1]);
+    bottom = std::min(bottom, sim.state().x[2 * i + 1]);
+  }
+  EXPECT_LT(top, -0.7);
+  EXPECT_GT(top, -0.7 - 0.01);  // within d_hat of the stopped ceiling
+  EXPECT_GT(bottom, -1.0);
+  EXPECT_LT(bottom, -1.0 + 0.01);
 }
 
 }  // namespace
