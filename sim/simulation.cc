@@ -368,7 +368,13 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
                         ? "converged"
                         : attempt.status + " (also with " + std::to_string(substeps) + " substeps)";
   }
-  state_.time = saved.state.time + h;
+  // A step that failed in every attempt may end part-way (its last attempt
+  // stopped after k of its substeps, or went back to a substep's start): the
+  // time still advances by h, and the moving boundaries stay where that state
+  // is free of them (a later step never starts inside an obstacle).
+  const double t_end = saved.state.time + h;
+  if (!report.converged) state_.boundary_lag += std::max(0.0, t_end - state_.time);
+  state_.time = t_end;
   report.time = state_.time;
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -418,5 +418,35 @@ TEST(TextbookSectionSix, StoppingCeilingAndPerContactFrictionAtTheFullStep) {
   EXPECT_LT(bottom, -1.0 + 0.01);
 }
 
+// A step that fails in all its substep attempts ends part-way through (its
+// last attempt stopped after some substeps) while the time advances by the
+// whole step: the moving boundaries must stay where that state is free of
+// them. Found on the textbook's section 6 with L-BFGS: step 213 stalls at
+// 1.44e-6 m/s (tolerance 1e-6) in 16 substeps, and the ceiling then moved on
+// by 15/16 of a step per step through the resting square (-0.24 m), every
+// later step "diverged: the energy is not finite".
+TEST(MovingBoundary, AStepFailedInEverySubstepAttemptLeavesTheCeilingBehind) {
+  SceneLoadOptions load;
+  load.extra_effects = DefaultEffects().UserNames();
+  const Scene scene =
+      LoadScene(std::string(IPSTEP_SOURCE_DIR) + "/problems/hard/textbook_squash.json", load);
+  SimulationOptions options = testing::Options("backward_euler", "lbfgs", 0.0, 1e-6);
+  options.max_substeps = 16;
+  Simulation sim(scene, options);
+  const std::vector<std::string> names = sim.DiagnosticNames();
+  const size_t gap = std::find(names.begin(), names.end(), "min_distance") - names.begin();
+  ASSERT_LT(gap, names.size());
+  int failed = 0;
+  for (int step = 0; step < 230; ++step) {
+    const StepReport r = sim.Step();
+    failed += !r.converged;
+    ASSERT_TRUE(std::isfinite(r.energies.total())) << "step " << r.step << ": " << r.status;
+    if (!std::isnan(r.diagnostics[gap])) {
+      ASSERT_GT(r.diagnostics[gap], 0.0) << "step " << r.step << ": " << r.status;
+    }
+  }
+  EXPECT_GT(failed, 0) << "no step failed in every attempt: the case no longer tests this";
+}
+
 }  // namespace
 }  // namespace ipstep
