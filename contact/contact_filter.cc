@@ -59,6 +59,14 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
   c.friction_family = kFrictionFamily;
   sets_ = MakePairSets(c, options_.self_contact, state->x.data(),
                        options_.self_contact_kappa > 0.0 ? &options_.self_contact_kappa : nullptr);
+  // The pairs already within d_hat at x_0 and their barrier terms: the
+  // initial energy (and Newmark's initial acceleration) include them. Every
+  // step rebuilds its own pairs (BeginStep).
+  const std::vector<double> no_reach(mesh_.nodes.size(), 0.0);
+  const std::vector<double> no_travel(options_.obstacles.size(), 0.0);
+  ExtendPairs(CandidateRegion{state->x.data(), state->x.data(), &no_reach, 0.0, &no_travel});
+  Lag(state->x.data());
+  RebuildBarrierTerms();
 }
 
 void ContactFilter::EnableFriction(const FrictionOptions& options) {

@@ -5,7 +5,7 @@ namespace ipstep {
 bool IsGravityTerm(const Term& term) { return term.family == "gravity"; }
 
 bool ComputeForces(IncrementalPotential* potential, const State& s, const Eigen::VectorXd& gravity,
-                   Eigen::VectorXd* forces) {
+                   Eigen::VectorXd* forces, bool impulsive) {
   StepContext& c = potential->context();
   // With v(x) = v + 1 * (x' - x), the gradient of R at x' = x is exactly B v.
   const Eigen::VectorXd saved_x_base = c.x_base, saved_v_base = c.v_base;
@@ -16,8 +16,10 @@ bool ComputeForces(IncrementalPotential* potential, const State& s, const Eigen:
   Eigen::VectorXd gradient(s.num_dofs());
   double energy = 0.0;
   const bool ok = potential->EvaluateUnweighted(
-      [](const Term& t) { return t.kind != TermKind::kInertia && !IsGravityTerm(t); }, s.x.data(),
-      &energy, gradient.data());
+      [impulsive](const Term& t) {
+        return t.kind != TermKind::kInertia && !IsGravityTerm(t) && (impulsive || !t.impulsive);
+      },
+      s.x.data(), &energy, gradient.data());
   c.x_base = saved_x_base;
   c.v_base = saved_v_base;
   c.velocity_slope = saved_slope;
@@ -29,9 +31,10 @@ bool ComputeForces(IncrementalPotential* potential, const State& s, const Eigen:
 }
 
 bool ComputeAccelerations(IncrementalPotential* potential, const State& s,
-                          const Eigen::VectorXd& gravity, Eigen::VectorXd* accelerations) {
+                          const Eigen::VectorXd& gravity, Eigen::VectorXd* accelerations,
+                          bool impulsive) {
   Eigen::VectorXd f;
-  if (!ComputeForces(potential, s, gravity, &f)) return false;
+  if (!ComputeForces(potential, s, gravity, &f, impulsive)) return false;
   const int dim = s.dimension;
   accelerations->setZero(s.num_dofs());
   for (int i = 0; i < s.num_nodes(); ++i) {

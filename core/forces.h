@@ -15,12 +15,17 @@ bool IsGravityTerm(const Term& term);
 // f(x, v) = -grad U(x) - B v + M g on every node (zero rows for nodes without
 // terms). Temporarily points the context's velocity map at (x, v); restores it.
 // Returns false if a term cannot be evaluated at x.
+// Without `impulsive`, the impulsive terms (Term::impulsive: contact) are
+// left out.
 bool ComputeForces(IncrementalPotential* potential, const State& state,
-                   const Eigen::VectorXd& gravity, Eigen::VectorXd* forces);
+                   const Eigen::VectorXd& gravity, Eigen::VectorXd* forces, bool impulsive = true);
 
-// Accelerations M^-1 f(x, v) for free nodes, zero for constrained ones.
+// Accelerations M^-1 f(x, v) for free nodes, zero for constrained ones
+// (`impulsive` as for ComputeForces: an integrator that separates impulses,
+// Newmark, keeps them out of its accelerations).
 bool ComputeAccelerations(IncrementalPotential* potential, const State& state,
-                          const Eigen::VectorXd& gravity, Eigen::VectorXd* accelerations);
+                          const Eigen::VectorXd& gravity, Eigen::VectorXd* accelerations,
+                          bool impulsive = true);
 
 struct EnergyReport {
   double kinetic = 0.0;

@@ -69,7 +69,10 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
     ValidateOptimizerOptions(options.optimizer);
   }
   if (integrator_->needs_initial_acceleration()) {
-    if (!ComputeAccelerations(potential_.get(), state_, gravity_, &state_.a)) {
+    // Newmark's accelerations hold no impulses (Integrator::UpdateWithImpulses):
+    // the barrier of pairs within d_hat at x_0 is not in a_0.
+    if (!ComputeAccelerations(potential_.get(), state_, gravity_, &state_.a,
+                              !integrator_->separates_impulses())) {
       throw InputError(scene_.source, "positions",
                        "the energies cannot be evaluated at the initial state");
     }

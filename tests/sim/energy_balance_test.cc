@@ -150,5 +150,28 @@ TEST(EnergyBalance, ClosedSystemStaysWithinTheToleranceOfItsInitialEnergy) {
   EXPECT_LE(max_energy, 1.12 * initial) << "after " << steps << " steps";
 }
 
+// A particle that starts within d_hat of the ground: its initial energy holds
+// the barrier energy of that pair, kappa b(d_0) with b(d) = -(d - d_hat)^2
+// ln(d / d_hat) (no gravity, at rest), and the first step's balance does not
+// count it again as work.
+TEST(EnergyBalance, InitialEnergyHoldsTheBarrierOfPairsWithinDHat) {
+  const double d0 = 0.004, d_hat = 0.01, kappa = 1e4;
+  const json scene = {
+      {"dimension", 2},
+      {"effects", {"contact"}},
+      {"particle", {{"position", {0, d0}}, {"mass", 1.0}}},
+      {"contact",
+       {{"dhat", d_hat},
+        {"kappa", kappa},
+        {"obstacles", {{{"type", "plane"}, {"point", {0, 0}}, {"normal", {0, 1}}}}}}}};
+  Simulation sim(ParseWithContact(scene), Options("backward_euler", "newton", 0.01, 1e-8));
+  const double barrier = -kappa * (d0 - d_hat) * (d0 - d_hat) * std::log(d0 / d_hat);
+  EXPECT_NEAR(sim.Energies().total(), barrier, 1e-12 * barrier);
+  const StepReport r = sim.Step();
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.prescribed_work, 0.0, 1e-9 * barrier);
+  EXPECT_LE(r.energies.total(), barrier * (1 + 1e-9));  // pushed away: kinetic + barrier <= b(d0)
+}
+
 }  // namespace
 }  // namespace ipstep
