@@ -37,6 +37,7 @@
 #include "core/input_limits.h"
 #include "core/parse_number.h"
 #include "energies/effect_registry.h"
+#include "io/csv_fields.h"
 #include "io/output_file.h"
 #include "problems/scene_loader.h"
 
@@ -156,26 +157,6 @@ void ParseShard(const std::string& text, int* index, int* count) {
     throw InputError("flag", "--shard",
                      "must be i/N with 0 <= i < N, got '" + ClipInput(text) + "'");
   }
-}
-
-// The fields of a CSV line (quoted fields may hold commas and doubled quotes).
-std::vector<std::string> CsvFields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
 }
 
 // Opens --output for writing, creating its folder; an InputError or an

@@ -25,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/csv_fields.h"
 #include "io/output_file.h"
 #include "tests/support/run_program.h"
 
@@ -33,6 +34,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using Outcome = ipstep::testing::ProgramOutcome;
+using ipstep::CsvFields;
 using ipstep::OutputError;
 using ipstep::OutputFile;
 
@@ -52,22 +54,6 @@ std::string ReadFile(const fs::path& path) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   return buffer.str();
-}
-
-// The fields of a CSV line (quoted fields may hold commas).
-std::vector<std::string> CsvFields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
 }
 
 // The program's lines that glog or Ceres logged ("E20261202 15:04:05.123 ...",
