@@ -43,7 +43,8 @@ EnergyBalance BalanceOf(const EnergyPoint& start, const EnergyPoint& end, const 
   double gravity_work = 0.0;
   for (int i = 0; i < state.num_nodes(); ++i) {
     if (!state.is_free(i)) continue;
-    const Eigen::VectorXd dx = end.x.segment(dim * i, dim) - start.x.segment(dim * i, dim);
+    // An expression over the two positions, not a copy: no allocation per node.
+    const auto dx = end.x.segment(dim * i, dim) - start.x.segment(dim * i, dim);
     b.floor += state.mass[i] * tolerance_per_h * dx.norm();
     if (gravity.size() == dim) gravity_work += state.mass[i] * gravity.dot(dx);
   }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include <glog/logging.h>
@@ -393,8 +394,10 @@ void Simulation::Advance(double h, StepReport* report) {
   Eigen::VectorXd x;
   integrator_->Predict(state_, gravity_, h, &potential_->context(), &x);
   const bool variational = integrator_->is_variational();
-  // The start, to go back to when the step ends inside an obstacle.
-  const State start = state_;
+  // The start, to go back to when the step ends inside an obstacle (only a
+  // step filter can find one: no copy of the state without them).
+  std::optional<State> start;
+  if (potential_->has_step_filters()) start = state_;
   bool boundary_reached = true;  // the prescribed nodes reached their targets
   // The energy balance starts before the filters' BeginStep, which report
   // what they change (PrescribedWork): sim/energy_balance.h.
@@ -440,8 +443,8 @@ void Simulation::Advance(double h, StepReport* report) {
       report->converged = false;
       // No later step may start inside an obstacle: back to the start (the
       // moving boundaries where they were then), time goes on.
-      state_ = start;
-      state_.boundary_lag = start.boundary_lag + h;
+      state_ = *start;
+      state_.boundary_lag = start->boundary_lag + h;
       potential_->NotifyAccepted(state_.x.data());
     } else if (found == StepFilter::Infeasibility::kBoundaryNotReached && boundary_reached) {
       report->status =
