@@ -13,9 +13,9 @@
 
 #include <gflags/gflags.h>
 
-#include "apps/near_miss.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "core/near_miss.h"
 
 namespace ipstep {
 

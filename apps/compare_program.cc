@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,47 +19,31 @@
 
 #include "apps/command_line.h"
 #include "apps/contact_flags.h"
-#include "apps/near_miss.h"
 #include "apps/program_main.h"
 #include "apps/programs.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
+#include "core/near_miss.h"
+#include "io/comparison_csv.h"
+#include "io/output_file.h"
 #include "problems/scene_loader.h"
+#include "sim/comparison.h"
 #include "sim/divergence.h"
 #include "sim/reference.h"
 #include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 
-DEFINE_string(integrators, "backward_euler,newmark,symplectic_euler",
-              "Comma-separated integrators to compare");
-DEFINE_string(optimizers, "newton,dogleg,gauss_newton,projected_newton,lbfgs,ncg",
+DEFINE_string(integrators, ipstep::kCompareIntegrators, "Comma-separated integrators to compare");
+DEFINE_string(optimizers, ipstep::kCompareOptimizers,
               "Comma-separated optimizers to compare (variational integrators); add bfgs "
               "and gradient_descent for the full set (both are slow on large scenes). "
               "projected_newton is ipstep's own Newton on Eigen (not Ceres), the yardstick");
+DEFINE_string(compare_output, "",
+              "CSV file: one row per configuration, the table's columns at full precision "
+              "(io/comparison_csv.h)");
 
 namespace ipstep {
 namespace {
-
-// The reference's tolerance [m/s]: near the precision floor of cost-based
-// acceptance (README "Precision floor").
-constexpr double kReferenceTolerance = 1e-7;
-
-struct RunResult {
-  RunSummary run;
-  Eigen::VectorXd x;
-  std::vector<int> free_nodes;
-  int dimension = 2;
-};
-
-RunResult RunOnce(const Scene& scene, const SimulationOptions& options) {
-  Simulation sim(scene, options);
-  RunResult result;
-  result.run = RunTrajectory(sim);
-  result.x = sim.state().x;
-  result.free_nodes = FreeNodes(sim.state());
-  result.dimension = sim.state().dimension;
-  return result;
-}
 
 // The names of a list flag (--integrators, --optimizers), each checked by
 // `check`; an InputError naming `option` (the library's name of the item,
@@ -94,7 +79,8 @@ int Run(const EffectRegistry& registry) {
   SimulationOptions base = SimulationOptionsFromFlags(registry);
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
   CheckContactFlagsApply(scene);
-  const std::vector<std::string> integrators =
+  ComparisonOptions comparison_options;
+  comparison_options.integrators =
       CheckedList("integrators", "options: IntegratorOptions.name", FLAGS_integrators, "integrator",
                   IntegratorNames(), [&base](const std::string& name) {
                     IntegratorOptions check = base.integrator;
@@ -103,78 +89,65 @@ int Run(const EffectRegistry& registry) {
                       throw InputError("options", "IntegratorOptions.name", "no integrator");
                     }
                   });
-  const std::vector<std::string> optimizers = CheckedList(
+  comparison_options.optimizers = CheckedList(
       "optimizers", "options: OptimizerOptions.optimizer", FLAGS_optimizers, "optimizer",
       OptimizerNames(), [](const std::string& name) { ParseOptimizer(name); });
+  // Opened before the runs: a path that cannot be written is an error first.
+  std::unique_ptr<OutputFile> csv;
+  if (!FLAGS_compare_output.empty()) {
+    csv = std::make_unique<OutputFile>(FLAGS_compare_output, "output: compare_output");
+    csv->stream() << ComparisonCsvHeader() << '\n';
+  }
 
-  const double dt = base.time_step > 0.0 ? base.time_step : scene.time_step;
-  // --t_end: its steps (Simulation checks that they are whole).
-  const int steps = base.t_end > 0.0  ? static_cast<int>(std::llround(base.t_end / dt))
-                    : base.steps >= 0 ? base.steps
-                                      : scene.steps;
-  const double t_end = dt * steps;
-
-  ReferenceOptions reference_options;
-  reference_options.optimizer.tolerance = kReferenceTolerance;
-  if (!ExactPositions(scene, t_end, nullptr)) {
+  ComparisonCallbacks callbacks;
+  callbacks.before_reference = [] {
     std::fprintf(stderr, "ipstep_compare: reference runs (Newmark at dt/16 and dt/8) ...\n");
-  }
-  const ReferenceSolution reference = ComputeReference(scene, base, reference_options, dt, t_end);
-  std::string reference_note = reference.description;
-  if (!reference.exact) {
-    char note[160];
-    std::snprintf(note, sizeof(note), " (%d of %d steps not converged); its estimated error %.2e m",
-                  reference.failed_steps, reference.steps, reference.error);
-    reference_note += note;
-  }
-
-  std::printf("scene %s: %d nodes, dt %g s, %d steps (t = %g s), tolerance %g m/s\n",
-              scene.name.c_str(), scene.num_nodes(), dt, steps, t_end, base.optimizer.tolerance);
-  std::printf("reference: %s\n\n", reference_note.c_str());
+  };
+  callbacks.after_reference = [&scene](const Comparison& c) {
+    std::printf("scene %s: %d nodes, dt %g s, %d steps (t = %g s), tolerance %g m/s\n",
+                scene.name.c_str(), scene.num_nodes(), c.dt, c.steps, c.t_end, c.tolerance);
+    std::printf("reference: %s\n\n", c.reference_note.c_str());
+  };
   // Progress on stderr, one line per configuration; the table at the end, so
   // that it is not interleaved with them on a terminal.
-  int total = 0;
-  for (const std::string& integrator : integrators) {
-    total += integrator == "symplectic_euler" ? 1 : static_cast<int>(optimizers.size());
-  }
+  callbacks.after_row = [](const ComparisonRow& row, int done, int total) {
+    const RunSummary& r = row.run;
+    std::fprintf(
+        stderr, "ipstep_compare: [%d/%d] %s %s: %.2f s, %d failed steps%s\n", done, total,
+        row.integrator.c_str(), row.optimizer.empty() ? "(explicit)" : row.optimizer.c_str(),
+        r.wall_seconds, r.failed,
+        r.diverged_at > 0 ? (", diverged at step " + std::to_string(r.diverged_at)).c_str() : "");
+  };
+  const Comparison c = RunComparison(scene, base, comparison_options, callbacks);
   std::string table =
       "| integrator | optimizer | dt [s] | failed steps | iterations/step | ms/step | position "
       "error [m] | max energy drift [energy scales] |\n|---|---|---|---|---|---|---|---|\n";
-  int done = 0, diverged = 0;
-  for (const std::string& integrator : integrators) {
-    const bool explicit_method = integrator == "symplectic_euler";
-    for (const std::string& optimizer : optimizers) {
-      SimulationOptions options = base;
-      options.integrator.name = integrator;
-      options.optimizer.optimizer = ParseOptimizer(optimizer);
-      const std::string label = explicit_method                   ? "(explicit)"
-                                : optimizer == "projected_newton" ? "projected_newton (not Ceres)"
-                                                                  : optimizer;
-      const RunResult result = RunOnce(scene, options);
-      const RunSummary& r = result.run;
-      char row[400];
-      if (r.diverged()) {
-        ++diverged;
-        std::snprintf(row, sizeof(row),
-                      "| %s | %s | %g | %d | %.1f | %.3f | diverged (step %d) | diverged |\n",
-                      integrator.c_str(), label.c_str(), dt, r.failed, r.iterations_per_step(),
-                      r.ms_per_step(), r.diverged_at);
-      } else {
-        const double error =
-            MaxNodeDistance(result.x, reference.x, result.free_nodes, result.dimension);
-        std::snprintf(row, sizeof(row), "| %s | %s | %g | %d | %.1f | %.3f | %.3e | %.3e |\n",
-                      integrator.c_str(), label.c_str(), dt, r.failed, r.iterations_per_step(),
-                      r.ms_per_step(), error, r.max_energy_drift);
-      }
-      table += row;
-      std::fprintf(
-          stderr, "ipstep_compare: [%d/%d] %s %s: %.2f s, %d failed steps%s\n", ++done, total,
-          integrator.c_str(), explicit_method ? "(explicit)" : optimizer.c_str(), r.wall_seconds,
-          r.failed,
-          r.diverged_at > 0 ? (", diverged at step " + std::to_string(r.diverged_at)).c_str() : "");
-      if (explicit_method) break;  // no optimiser involved
+  int diverged = 0;
+  for (const ComparisonRow& row : c.rows) {
+    const RunSummary& r = row.run;
+    const std::string label = row.optimizer.empty()                 ? "(explicit)"
+                              : row.optimizer == "projected_newton" ? "projected_newton (not Ceres)"
+                                                                    : row.optimizer;
+    char line[400];
+    if (r.diverged()) {
+      ++diverged;
+      std::snprintf(line, sizeof(line),
+                    "| %s | %s | %g | %d | %.1f | %.3f | diverged (step %d) | diverged |\n",
+                    row.integrator.c_str(), label.c_str(), row.dt, r.failed,
+                    r.iterations_per_step(), r.ms_per_step(), r.diverged_at);
+    } else {
+      std::snprintf(line, sizeof(line), "| %s | %s | %g | %d | %.1f | %.3f | %.3e | %.3e |\n",
+                    row.integrator.c_str(), label.c_str(), row.dt, r.failed,
+                    r.iterations_per_step(), r.ms_per_step(), row.position_error,
+                    r.max_energy_drift);
+    }
+    table += line;
+    if (csv) {
+      csv->stream() << ComparisonCsvRow(scene.name, c, row) << '\n';
+      csv->EndRow();
     }
   }
+  if (csv) csv->Close();
   std::printf("%s", table.c_str());
   if (diverged > 0) {
     std::printf("\ndiverged: %s; the run stops there.\n", DivergenceRule::Description());

@@ -17,6 +17,9 @@ const std::vector<FlagName>& FlagNames() {
       {"options: OptimizerOptions.line_search", "line_search"},
       {"options: OptimizerOptions.nonlinear_cg", "nonlinear_cg"},
       {"options: OptimizerOptions.lbfgs_rank", "lbfgs_rank"},
+      {"options: OptimizerOptions.backtrack_rejected_steps", "backtrack_rejected_steps"},
+      {"options: OptimizerOptions.mass_scaled_coordinates", "mass_scaled_coordinates"},
+      {"options: OptimizerOptions.precise_line_search_energy", "precise_energy"},
       {"options: OptimizerOptions.hessian_projection", "hessian_projection"},
       // integrators/integrator.cc
       {"options: IntegratorOptions.name", "integrator"},
@@ -25,6 +28,8 @@ const std::vector<FlagName>& FlagNames() {
       // sim/simulation.cc
       {"options: SimulationOptions.time_step", "dt"},
       {"options: SimulationOptions.steps", "steps"},
+      {"options: SimulationOptions.energy_tolerance", "energy_tolerance"},
+      {"options: SimulationOptions.max_substeps", "max_substeps"},
       {"options: SimulationOptions.t_end", "t_end"},
       // sim/step_size_controller.cc, sim/run_trajectory.cc
       {"options: AdaptiveOptions.error_tolerance", "error_tolerance"},
@@ -40,6 +45,8 @@ const std::vector<FlagName>& FlagNames() {
       {"output: iterations_log", "iterations_log"},
       {"output: positions", "positions"},
       {"output: frames", "frames"},
+      // apps/compare_program.cc
+      {"output: compare_output", "compare_output"},
   };
   return names;
 }
@@ -62,6 +69,14 @@ const std::vector<UnmappedName>& UnmappedNames() {
       {"options: RunOptions.steps",
        "the programs run a Simulation's own steps (--steps, --t_end) or ipstep_bench's checked "
        "--steps"},
+      {"options: RunOptions.stop_on_failure",
+       "set from --on_failure (stop or continue), checked by the programs; the library's "
+       "option tables (sim/simulation_option_table.h) name it for the Python module"},
+      {"options: RunOptions.stop_on_divergence",
+       "follows --on_failure; named by the option tables for the Python module"},
+      {"options: ComparisonOptions.",
+       "ipstep_compare checks its lists (--integrators, --optimizers) before, naming the flag "
+       "and a near miss"},
       {"options: RunOptions.max_wall_seconds",
        "ipstep_bench range-checks --max_run_seconds before it becomes the run's limit"},
       {"options: ReferenceOptions.refinement",

@@ -16,6 +16,8 @@
 #include "apps/flag_names.h"
 #include "apps/programs.h"
 #include "core/input_error.h"
+#include "problems/scene_load_option_table.h"
+#include "sim/simulation_option_table.h"
 #include "solver/optimizer_options.h"
 
 namespace ipstep {
@@ -71,6 +73,10 @@ std::set<std::string> ReportedOptionNames() {
       }
     }
   }
+  // The option tables' fields (core/option_table.h reports bad values by them).
+  for (const auto& row : SimulationOptionTable()) names.insert("options: " + row.field);
+  for (const auto& row : SceneLoadOptionTable()) names.insert("options: " + row.field);
+  for (const auto& row : RunOptionTable()) names.insert("options: " + row.field);
   return names;
 }
 
@@ -107,9 +113,11 @@ TEST(FlagNames, EveryReportedOptionHasAFlagOrIsUnmappedDeliberately) {
 TEST(FlagNames, EveryRowIsReportedAndItsFlagExists) {
   ASSERT_TRUE(LinkPrograms());
   const std::set<std::string> reported = ReportedOptionNames();
-  // The outputs apps/ipstep_program.cc names (io/ takes the name from its caller).
+  // The outputs apps/ipstep_program.cc and apps/compare_program.cc name (io/
+  // takes the name from its caller).
   const std::set<std::string> outputs = {"output: stats", "output: iterations_log",
-                                         "output: positions", "output: frames"};
+                                         "output: positions", "output: frames",
+                                         "output: compare_output"};
   std::set<std::string> rows;
   for (const FlagName& row : FlagNames()) {
     EXPECT_TRUE(rows.insert(row.library_name).second) << row.library_name << ": two rows";

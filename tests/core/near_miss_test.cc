@@ -1,8 +1,8 @@
-// Near-miss suggestions (apps/near_miss.h): edit distance with adjacent
+// Near-miss suggestions (core/near_miss.h): edit distance with adjacent
 // transpositions, and which candidate is close enough to suggest.
 #include <gtest/gtest.h>
 
-#include "apps/near_miss.h"
+#include "core/near_miss.h"
 
 namespace {
 

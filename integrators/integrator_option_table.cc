@@ -1,0 +1,42 @@
+#include "integrators/integrator_option_table.h"
+
+namespace ipstep {
+namespace {
+
+OptionTable<IntegratorOptions> Build() {
+  OptionTable<IntegratorOptions> t;
+  OptionRow<IntegratorOptions> name = MakeOptionRow<IntegratorOptions>(
+      "integrator", "IntegratorOptions.name", "integrator", OptionType::kString,
+      std::string("backward_euler"), "backward_euler | newmark | quasi_static | symplectic_euler");
+  name.set = SetField(&IntegratorOptions::name);
+  t.push_back(name);
+  const auto newmark_only = [](const IntegratorOptions& o) -> std::string {
+    return o.name == "newmark" ? "" : "applies to integrator=newmark only";
+  };
+  OptionRow<IntegratorOptions> beta =
+      WithRange(MakeOptionRow<IntegratorOptions>("newmark_beta", "IntegratorOptions.newmark_beta",
+                                                 "newmark_beta", OptionType::kDouble, 0.25,
+                                                 "Newmark beta (integrators/newmark.h)"),
+                1e-3, 1.0, "");
+  beta.set = SetField(&IntegratorOptions::newmark_beta);
+  beta.applies = newmark_only;
+  t.push_back(beta);
+  OptionRow<IntegratorOptions> gamma =
+      WithRange(MakeOptionRow<IntegratorOptions>("newmark_gamma", "IntegratorOptions.newmark_gamma",
+                                                 "newmark_gamma", OptionType::kDouble, 0.5,
+                                                 "Newmark gamma (integrators/newmark.h)"),
+                0.5, 1.0, "");
+  gamma.set = SetField(&IntegratorOptions::newmark_gamma);
+  gamma.applies = newmark_only;
+  t.push_back(gamma);
+  return t;
+}
+
+}  // namespace
+
+const OptionTable<IntegratorOptions>& IntegratorOptionTable() {
+  static const OptionTable<IntegratorOptions> table = Build();
+  return table;
+}
+
+}  // namespace ipstep

@@ -1,0 +1,128 @@
+#include "sim/simulation_option_table.h"
+
+#include "core/input_limits.h"
+#include "integrators/integrator_option_table.h"
+#include "solver/optimizer_option_table.h"
+
+namespace ipstep {
+namespace {
+
+using Row = OptionRow<SimulationOptions>;
+
+Row Own(const char* name, const char* flag, OptionType type, OptionValue value, const char* doc) {
+  return MakeOptionRow<SimulationOptions>(name, std::string("SimulationOptions.") + name, flag,
+                                          type, std::move(value), doc);
+}
+
+// A parameter of an effect, set as SimulationOptions::effect_overrides[effect][key].
+Row Override(const char* name, const char* effect, const char* key, OptionType type, double min,
+             double max, const char* unit, bool min_open, const char* doc) {
+  Row row = WithRange(MakeOptionRow<SimulationOptions>(
+                          name, std::string("effect_overrides.") + effect + "." + key, name, type,
+                          type == OptionType::kInt ? OptionValue(0LL) : OptionValue(0.0), doc),
+                      min, max, unit, std::string("the scene's ") + key, min_open);
+  const std::string effect_name = effect, key_name = key;
+  row.set = [effect_name, key_name](const OptionValue& v, SimulationOptions* o) {
+    if (const long long* i = std::get_if<long long>(&v)) {
+      o->effect_overrides[effect_name][key_name] = *i;
+    } else {
+      o->effect_overrides[effect_name][key_name] = std::get<double>(v);
+    }
+  };
+  return row;
+}
+
+OptionTable<SimulationOptions> Build() {
+  OptionTable<SimulationOptions> t =
+      LiftOptions(IntegratorOptionTable(), &SimulationOptions::integrator);
+  const OptionTable<SimulationOptions> optimizer =
+      LiftOptions(OptimizerOptionTable(), &SimulationOptions::optimizer);
+  t.insert(t.end(), optimizer.begin(), optimizer.end());
+
+  Row time_step =
+      WithRange(Own("time_step", "dt", OptionType::kDouble, 0.0, "Time step [s]"),
+                limits::kMinTimeStep, limits::kMaxTimeStep, "s", "the scene's time_step");
+  time_step.set = SetField(&SimulationOptions::time_step);
+  t.push_back(time_step);
+  Row steps = WithRange(Own("steps", "steps", OptionType::kInt, -1LL, "Number of steps"), 0,
+                        limits::kMaxSteps, "", "the scene's steps");
+  steps.set = SetField(&SimulationOptions::steps);
+  t.push_back(steps);
+  Row t_end = WithRange(Own("t_end", "t_end", OptionType::kDouble, 0.0,
+                            "End time [s]: t_end / time_step steps (a whole number); not with "
+                            "steps"),
+                        0.0, limits::kMaxSteps * limits::kMaxTimeStep, "s", "the scene's steps",
+                        /*min_open=*/true);
+  t_end.set = SetField(&SimulationOptions::t_end);
+  t.push_back(t_end);
+  Row energy = WithRange(Own("energy_tolerance", "energy_tolerance", OptionType::kDouble, 0.1,
+                             "A step whose energy grows by more than this fraction of the energy "
+                             "in motion fails with status 'energy growth'; 0: no check"),
+                         0.0, 100.0, "");
+  energy.set = SetField(&SimulationOptions::energy_tolerance);
+  t.push_back(energy);
+  Row substeps = WithRange(Own("max_substeps", "max_substeps", OptionType::kInt, 1LL,
+                               "A failed step is retried from its start as 2, 4, ... substeps, "
+                               "up to this many; 1: no retry"),
+                           1, 1024, "");
+  substeps.set = SetField(&SimulationOptions::max_substeps);
+  t.push_back(substeps);
+  t.push_back(Override("contact_kappa", "contact", "kappa", OptionType::kDouble, 0.0,
+                       limits::kMaxKappa, "", true,
+                       "Fixed barrier stiffness kappa (scenes with contact)"));
+  t.push_back(Override("contact_dhat", "contact", "dhat", OptionType::kDouble, limits::kMinDhat,
+                       limits::kMaxDhat, "m", false,
+                       "Barrier activation distance d_hat [m] (scenes with contact)"));
+  t.push_back(Override("friction_mu", "friction", "mu", OptionType::kDouble, 0.0,
+                       limits::kMaxFrictionMu, "", false,
+                       "Friction coefficient (scenes with friction)"));
+  t.push_back(Override("friction_iterations", "friction", "iterations", OptionType::kInt, 1,
+                       limits::kMaxFrictionIterations, "", false,
+                       "Friction lag iterations per step (scenes with friction)"));
+  return t;
+}
+
+}  // namespace
+
+const OptionTable<SimulationOptions>& SimulationOptionTable() {
+  static const OptionTable<SimulationOptions> table = Build();
+  return table;
+}
+
+const OptionTable<RunOptions>& RunOptionTable() {
+  static const OptionTable<RunOptions> table = [] {
+    OptionTable<RunOptions> t;
+    OptionRow<RunOptions> stop = MakeOptionRow<RunOptions>(
+        "stop_on_failure", "RunOptions.stop_on_failure", "", OptionType::kBool, false,
+        "Stop at the first step that fails (also as substeps); otherwise failed steps are "
+        "counted and the run goes on (the ipstep program sets it unless told to continue)");
+    stop.set = SetField(&RunOptions::stop_on_failure);
+    t.push_back(stop);
+    OptionRow<RunOptions> diverge = MakeOptionRow<RunOptions>(
+        "stop_on_divergence", "RunOptions.stop_on_divergence", "", OptionType::kBool, true,
+        "Stop at the first diverged step (sim/divergence.h)");
+    diverge.set = SetField(&RunOptions::stop_on_divergence);
+    t.push_back(diverge);
+    OptionRow<RunOptions> wall =
+        WithRange(MakeOptionRow<RunOptions>(
+                      "max_wall_seconds", "RunOptions.max_wall_seconds", "", OptionType::kDouble,
+                      0.0, "Stop once the run has taken this long [s] with steps left"),
+                  0.0, limits::kMaxTimeLimit, "s", "no limit", /*min_open=*/true);
+    wall.set = SetField(&RunOptions::max_wall_seconds);
+    t.push_back(wall);
+    return t;
+  }();
+  return table;
+}
+
+void CheckOptionsApply(const SimulationOptions& options, const std::vector<std::string>& given) {
+  for (const std::string& name : given) {
+    const Row* row = FindOption(SimulationOptionTable(), name);
+    if (row == nullptr || !row->applies) continue;
+    const std::string why = row->applies(options);
+    // A table's field (tests/apps/flag_names_test.cc counts them as reported).
+    if (!why.empty()) throw InputError("options: " + row->field + ": " + why);
+  }
+}
+
+}  // namespace ipstep

@@ -1,0 +1,151 @@
+#include "solver/optimizer_option_table.h"
+
+#include "core/input_limits.h"
+
+namespace ipstep {
+namespace {
+
+using Row = OptionRow<OptimizerOptions>;
+
+Row Make(const char* name, const char* flag, OptionType type, OptionValue value, const char* doc) {
+  return MakeOptionRow<OptimizerOptions>(name, std::string("OptimizerOptions.") + name, flag, type,
+                                         std::move(value), doc);
+}
+
+// "" when `options.optimizer` is of `family` (projected_newton also takes the
+// sparse Cholesky's options), else why not.
+std::function<std::string(const OptimizerOptions&)> Family(OptimizerFamily family,
+                                                           bool sparse_cholesky = false) {
+  return [family, sparse_cholesky](const OptimizerOptions& o) -> std::string {
+    const OptimizerFamily given = FamilyOf(o.optimizer);
+    if (given == family || (sparse_cholesky && given == OptimizerFamily::kEigenNewton)) return "";
+    const char* names = family == OptimizerFamily::kTrustRegion ? "newton, dogleg and gauss_newton"
+                        : family == OptimizerFamily::kLineSearch
+                            ? "lbfgs, bfgs, ncg and gradient_descent"
+                            : "projected_newton";
+    return std::string("applies to ") + names + (sparse_cholesky ? " and projected_newton" : "") +
+           ", not to optimizer=" + OptimizerName(o.optimizer);
+  };
+}
+
+OptionTable<OptimizerOptions> Build() {
+  OptionTable<OptimizerOptions> t;
+  Row optimizer = Make("optimizer", "optimizer", OptionType::kString, std::string("newton"),
+                       "newton | dogleg | gauss_newton | lbfgs | bfgs | ncg | gradient_descent | "
+                       "projected_newton (not Ceres)");
+  optimizer.field = "OptimizerOptions.optimizer";
+  optimizer.set = [](const OptionValue& v, OptimizerOptions* o) {
+    o->optimizer = ParseOptimizer(std::get<std::string>(v));
+  };
+  t.push_back(optimizer);
+  Row tolerance =
+      Make("tolerance", "tolerance", OptionType::kDouble, 1e-5,
+           "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step, > 0");
+  tolerance.unit = "m/s";
+  tolerance.set = SetField(&OptimizerOptions::tolerance);
+  t.push_back(tolerance);
+  Row max_iterations = WithRange(
+      Make("max_iterations", "max_iterations", OptionType::kInt, 0LL,
+           "Optimizer iteration limit per step"),
+      1, limits::kMaxIterations, "",
+      "the optimizer's default: newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, "
+      "ncg 20000, gradient_descent 50000");
+  max_iterations.set = SetField(&OptimizerOptions::max_iterations);
+  t.push_back(max_iterations);
+  Row time_limit = WithRange(
+      Make("time_limit", "time_limit", OptionType::kDouble, 0.0, "Wall-time limit per step [s]"),
+      0.0, limits::kMaxTimeLimit, "s", "no limit", /*min_open=*/true);
+  time_limit.set = SetField(&OptimizerOptions::time_limit);
+  t.push_back(time_limit);
+  Row threads = WithRange(
+      Make("num_threads", "num_threads", OptionType::kInt, 0LL,
+           "Threads for the terms' energies, gradients and Newton models (the same iterates for "
+           "any count) and Ceres's own evaluation (gauss_newton)"),
+      1, limits::kMaxThreads, "", "the machine's hardware threads");
+  threads.set = SetField(&OptimizerOptions::num_threads);
+  t.push_back(threads);
+  Row linear_solver =
+      Make("linear_solver", "linear_solver", OptionType::kString, std::string(),
+           "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY); "
+           "projected_newton: SPARSE_CHOLESKY (default) | CG");
+  linear_solver.set = SetField(&OptimizerOptions::linear_solver);
+  linear_solver.applies = Family(OptimizerFamily::kTrustRegion, true);
+  t.push_back(linear_solver);
+  Row sparse = Make("sparse_library", "sparse_library", OptionType::kString, std::string(),
+                    "Sparse Cholesky library: SUITE_SPARSE (default) | CX_SPARSE | EIGEN_SPARSE "
+                    "(projected_newton: SUITE_SPARSE | EIGEN_SPARSE)");
+  sparse.set = SetField(&OptimizerOptions::sparse_library);
+  sparse.applies = Family(OptimizerFamily::kTrustRegion, true);
+  t.push_back(sparse);
+  Row ordering =
+      Make("linear_solver_ordering", "linear_solver_ordering", OptionType::kString, std::string(),
+           "Fill-reducing ordering of the sparse Cholesky: AMD | NESDIS; default: NESDIS for 3D "
+           "solids of 20000 free DOFs or more, AMD otherwise");
+  ordering.set = SetField(&OptimizerOptions::linear_solver_ordering);
+  ordering.applies = Family(OptimizerFamily::kTrustRegion, true);
+  t.push_back(ordering);
+  Row radius =
+      WithRange(Make("initial_trust_region_radius", "trust_region_radius", OptionType::kDouble, 0.0,
+                     "newton/dogleg/gauss_newton: initial trust-region radius"),
+                limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius, "",
+                "newton and gauss_newton 1e16, dogleg 1e4");
+  radius.set = SetField(&OptimizerOptions::initial_trust_region_radius);
+  radius.applies = Family(OptimizerFamily::kTrustRegion);
+  t.push_back(radius);
+  Row backtrack =
+      Make("backtrack_rejected_steps", "backtrack_rejected_steps", OptionType::kBool, true,
+           "newton/dogleg/gauss_newton: backtrack along a rejected trial step and "
+           "restart Ceres from there (false: Ceres only shrinks its trust region)");
+  backtrack.set = SetField(&OptimizerOptions::backtrack_rejected_steps);
+  backtrack.applies = Family(OptimizerFamily::kTrustRegion);
+  t.push_back(backtrack);
+  Row line_search = Make("line_search", "line_search", OptionType::kString, std::string(),
+                         "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
+  line_search.set = SetField(&OptimizerOptions::line_search);
+  line_search.applies = Family(OptimizerFamily::kLineSearch);
+  t.push_back(line_search);
+  Row ncg = Make("nonlinear_cg", "nonlinear_cg", OptionType::kString, std::string(),
+                 "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIEFEL (default "
+                 "FLETCHER_REEVES)");
+  ncg.set = SetField(&OptimizerOptions::nonlinear_cg);
+  ncg.applies = Family(OptimizerFamily::kLineSearch);
+  t.push_back(ncg);
+  Row rank = WithRange(
+      Make("lbfgs_rank", "lbfgs_rank", OptionType::kInt, 0LL, "lbfgs: number of correction pairs"),
+      1, limits::kMaxLbfgsRank, "", "the rank 20");
+  rank.set = SetField(&OptimizerOptions::lbfgs_rank);
+  rank.applies = Family(OptimizerFamily::kLineSearch);
+  t.push_back(rank);
+  Row scaled = Make("mass_scaled_coordinates", "mass_scaled_coordinates", OptionType::kBool, true,
+                    "line-search optimizers: work in z = sqrt(m) x / h (kinetic-energy metric)");
+  scaled.set = SetField(&OptimizerOptions::mass_scaled_coordinates);
+  scaled.applies = Family(OptimizerFamily::kLineSearch);
+  t.push_back(scaled);
+  Row precise = Make("precise_line_search_energy", "precise_energy", OptionType::kBool, true,
+                     "line-search optimizers: sum energies in extended precision");
+  precise.set = SetField(&OptimizerOptions::precise_line_search_energy);
+  t.push_back(precise);
+  Row projection =
+      Make("hessian_projection", "hessian_projection", OptionType::kString, std::string("default"),
+           "newton/dogleg/projected_newton: how each iteration's model is made positive definite: "
+           "default | always | abs | trust_region | when_indefinite | progressive | inertia");
+  projection.set = [](const OptionValue& v, OptimizerOptions* o) {
+    o->hessian_projection = ParseHessianProjection(std::get<std::string>(v));
+  };
+  projection.applies = [](const OptimizerOptions& o) -> std::string {
+    if (UsesNewtonModel(o.optimizer)) return "";
+    return std::string("applies to newton, dogleg and projected_newton, not to optimizer=") +
+           OptimizerName(o.optimizer);
+  };
+  t.push_back(projection);
+  return t;
+}
+
+}  // namespace
+
+const OptionTable<OptimizerOptions>& OptimizerOptionTable() {
+  static const OptionTable<OptimizerOptions> table = Build();
+  return table;
+}
+
+}  // namespace ipstep
