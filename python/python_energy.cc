@@ -28,6 +28,21 @@ std::unique_ptr<py::error_already_set>& PendingError() {
   return error;
 }
 
+// Every registered energy: their Python objects are released at the
+// interpreter's exit (atexit), before the registry's static destruction,
+// which runs after Python is gone.
+std::vector<std::shared_ptr<PythonEnergy>>& Registered() {
+  static std::vector<std::shared_ptr<PythonEnergy>> energies;
+  return energies;
+}
+
+void ReleasePythonObjects() {
+  for (const auto& e : Registered()) {
+    e->energy = e->gradient = e->hessian = e->terms = py::object();
+  }
+  PendingError().reset();
+}
+
 void Keep(py::error_already_set error) {
   if (!PendingError()) PendingError() = std::make_unique<py::error_already_set>(std::move(error));
 }
@@ -200,6 +215,7 @@ void RaisePythonEnergyError() {
 }
 
 void BindPythonEnergy(py::module_& m) {
+  py::module_::import("atexit").attr("register")(py::cpp_function(&ReleasePythonObjects));
   m.def(
       "register_energy",
       [](const std::string& name, py::object energy, py::object gradient, py::object hessian,
@@ -210,6 +226,7 @@ void BindPythonEnergy(py::module_& m) {
         e->gradient = std::move(gradient);
         e->hessian = std::move(hessian);
         e->terms = std::move(terms);
+        Registered().push_back(e);
         Effects().Register(name, description.empty() ? "an energy written in Python" : description,
                            [e](TermBuilder& builder, const nlohmann::json& parameters) {
                              return Build(e, builder, parameters);

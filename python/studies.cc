@@ -101,9 +101,10 @@ py::list Compare(const py::object& scene_argument, const py::object& integrators
 }
 
 py::list Bench(const py::object& scene_argument, const py::object& integrators,
-               const py::object& optimizers, const py::object& dts, int steps, double tolerance,
-               int repeats, int warmup, bool errors, const std::string& reference_optimizer,
-               double reference_tolerance, int grid_size, const py::object& csv) {
+               const py::object& optimizers, const py::object& dts, int steps, double t_end,
+               double tolerance, int repeats, int warmup, bool errors,
+               const std::string& reference_optimizer, double reference_tolerance, int grid_size,
+               const py::object& csv) {
   // ipstep_bench's runs load their scene by name or path (bench/bench_runner.h).
   if (py::isinstance<py::dict>(scene_argument) || py::isinstance<Scene>(scene_argument)) {
     throw py::value_error("bench: scene must be a built-in scene name or a JSON file's path");
@@ -118,6 +119,7 @@ py::list Bench(const py::object& scene_argument, const py::object& integrators,
   std::vector<double> dt_list =
       dts.is_none() ? std::vector<double>{scene.time_step} : dts.cast<std::vector<double>>();
   if (dt_list.empty()) throw py::value_error("bench: dts lists no time step");
+  if (steps > 0 && t_end > 0.0) throw py::value_error("bench: give steps or t_end, not both");
   if (repeats < 1 || warmup < 0) throw py::value_error("bench: repeats >= 1, warmup >= 0");
   std::map<std::string, bench::OptimizerSpec> specs;
   for (const std::string& text : optimizer_names) {
@@ -135,8 +137,9 @@ py::list Bench(const py::object& scene_argument, const py::object& integrators,
         c.integrator = integrator;
         c.optimizer = explicit_method ? "none" : optimizer;
         c.dt = dt;
-        c.steps =
-            steps > 0 ? steps : static_cast<int>(std::llround(scene.time_step * scene.steps / dt));
+        c.steps = steps > 0 ? steps
+                            : static_cast<int>(std::llround(
+                                  (t_end > 0.0 ? t_end : scene.time_step * scene.steps) / dt));
         c.tolerance = tolerance;
         c.repeats = repeats;
         c.warmup = warmup;
@@ -214,12 +217,13 @@ void BindStudies(py::module_& m) {
         "file. Defaults: ipstep_compare's lists. options: as Simulation's.");
   m.def("bench", &Bench, py::arg("scene"), py::arg("integrators") = py::none(),
         py::arg("optimizers") = py::none(), py::arg("dts") = py::none(), py::arg("steps") = 0,
-        py::arg("tolerance") = 1e-6, py::arg("repeats") = 1, py::arg("warmup") = 0,
-        py::arg("errors") = true, py::arg("reference_optimizer") = "projected_newton",
-        py::arg("reference_tolerance") = 1e-8, py::arg("grid_size") = 0,
-        py::arg("csv") = py::none(),
+        py::arg("t_end") = 0.0, py::arg("tolerance") = 1e-6, py::arg("repeats") = 1,
+        py::arg("warmup") = 0, py::arg("errors") = true,
+        py::arg("reference_optimizer") = "projected_newton", py::arg("reference_tolerance") = 1e-8,
+        py::arg("grid_size") = 0, py::arg("csv") = py::none(),
         "bench(scene, integrators, optimizers (ipstep_bench's specs, e.g. 'lbfgs+rank=5'), "
-        "dts, steps=0 (the scene's end time / dt), tolerance=1e-6, repeats=1, warmup=0, "
+        "dts, steps=0, t_end=0 (steps or t_end / dt steps; neither: the scene's end time / dt), "
+        "tolerance=1e-6, repeats=1, warmup=0, "
         "errors=True, ...) -> list of dict: ipstep_bench's rows (bench/bench_runner.h), the "
         "same columns as its CSV; csv=PATH writes that file.");
 }

@@ -13,6 +13,9 @@ packages=(
   # bench/plot_benchmarks.py (matplotlib), tools/animate.py (matplotlib, Pillow
   # for GIFs): run them with /usr/bin/python3, which has these packages.
   python3 python3-matplotlib python3-pil
+  # the Python module `import ipstep` (python/, docs/python.md): pybind11 for
+  # /usr/bin/python3, NumPy arrays, and its tests (pytest)
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 run_as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
