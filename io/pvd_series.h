@@ -17,9 +17,10 @@ class PvdSeries {
   // be opened (kOpen) or written (kWrite).
   PvdSeries(const std::string& path, const std::string& output);
   // Adds `file` (relative to the .pvd's directory) as part `part` at `time`
-  // [s]. The .pvd is complete after every call (also when a run stops there):
-  // the entry is written over the closing tags, which follow it again.
-  // Throws OutputError (kWrite) if the file cannot be written.
+  // [s], printed in the shortest form that reads back as the same double
+  // (0.98, not 0.980000000000001). The .pvd is complete after every call (also when a run stops
+  // there): the entry is written over the closing tags, which follow it again. Throws OutputError
+  // (kWrite) if the file cannot be written.
   void Add(double time, int part, const std::string& file);
 
  private:
