@@ -15,10 +15,25 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 template <int kDim>
 using Matrix = Eigen::Matrix<double, kDim, kDim>;
 
-// Psi and the Cauchy stress at F; false where the model is not defined.
+// The neo-Hookean Psi in the displacement gradient H = F - I (element_energy.h's
+// PreciseEnergy): every part O(strain^2), so that Psi near rest is not the
+// round-off of O(1) parts (it would come out negative there).
 template <int kDim>
-bool EnergyAndStress(const ElasticMaterial& material, const Matrix<kDim>& F, double* psi,
+double NeoHookeanPsi(const Matrix<kDim>& H, double mu, double lambda) {
+  const double trace = H.trace();
+  const double i2 = kDim == 3 ? 0.5 * (trace * trace - (H * H).trace()) : 0.0;
+  const double q = trace + i2 + H.determinant();  // J - 1
+  const double log_j = std::log1p(q);
+  return 0.5 * mu * H.squaredNorm() - mu * (i2 + H.determinant()) + mu * (q - log_j) +
+         0.5 * lambda * log_j * log_j;
+}
+
+// Psi and the Cauchy stress at F = I + H; false where the model is not
+// defined.
+template <int kDim>
+bool EnergyAndStress(const ElasticMaterial& material, const Matrix<kDim>& H, double* psi,
                      Matrix<kDim>* cauchy) {
+  const Matrix<kDim> F = Matrix<kDim>::Identity() + H;
   const double mu = material.mu(), lambda = material.lambda(kDim);
   const double J = F.determinant();
   if (!(J > 0.0)) return false;
@@ -35,7 +50,8 @@ bool EnergyAndStress(const ElasticMaterial& material, const Matrix<kDim>& F, dou
   for (int i = 0; i < kDim; ++i) {
     for (int j = 0; j < kDim; ++j) P(i, j) = model.stress[i * kDim + j];
   }
-  *psi = model.psi;
+  *psi =
+      material.model == ElasticModel::kNeoHookean ? NeoHookeanPsi<kDim>(H, mu, lambda) : model.psi;
   *cauchy = P * F.transpose() / J;
   return true;
 }
@@ -55,18 +71,18 @@ ElementFields Fields(const Solid& solid, const Eigen::VectorXd& x) {
   const SimplexMesh& mesh = solid.mesh;
   ElementFields fields;
   for (const std::array<int, 4>& e : mesh.elements) {
-    Matrix<kDim> rest, now;
+    Matrix<kDim> rest, change;  // Dm, Ds - Dm (exact differences)
     for (int c = 0; c < kDim; ++c) {
       for (int k = 0; k < kDim; ++k) {
         rest(k, c) = mesh.positions[kDim * e[c + 1] + k] - mesh.positions[kDim * e[0] + k];
-        now(k, c) = x[kDim * e[c + 1] + k] - x[kDim * e[0] + k];
+        change(k, c) = (x[kDim * e[c + 1] + k] - x[kDim * e[0] + k]) - rest(k, c);
       }
     }
-    const Matrix<kDim> F = now * rest.inverse();
+    const Matrix<kDim> H = change * rest.inverse();  // F - I
     double psi = kNaN;
     Matrix<kDim> cauchy;
-    const bool defined = EnergyAndStress<kDim>(solid.material, F, &psi, &cauchy);
-    fields.J.push_back(F.determinant());
+    const bool defined = EnergyAndStress<kDim>(solid.material, H, &psi, &cauchy);
+    fields.J.push_back((Matrix<kDim>::Identity() + H).determinant());
     fields.energy_density.push_back(defined ? psi : kNaN);
     fields.von_mises_stress.push_back(defined ? VonMises(cauchy) : kNaN);
   }

@@ -73,6 +73,7 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--optimizer=projected_newton --lbfgs_rank=3", "flag", "--lbfgs_rank");
   ExpectInputError("--max_iterations=-1", "flag", "--max_iterations");
   ExpectInputError("--frame_every=0", "flag", "--frame_every");
+  ExpectInputError("--frames_format=binary", "flag", "--frames_format");
   ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
   ExpectInputError("--stats=/nonexistent_dir/x.csv", "flag", "--stats");
   ExpectInputError("stray_argument", "command line", "stray_argument");
