@@ -178,7 +178,7 @@ void FrameWriter::Write(int frame) {
   }
   const std::string body_file = Numbered("frame", frame);
   WriteVtu(body, (std::filesystem::path(directory_) / body_file).string(), output_, encoding_);
-  series_->Add(s.time, 0, body_file);
+  series_->Add(s.time, 0, "body", body_file);
   if (!obstacles_.empty()) {
     std::string obstacle_file = "obstacles.vtu";
     if (obstacles_move_) obstacle_file = Numbered("obstacles", frame);
@@ -187,7 +187,7 @@ void FrameWriter::Write(int frame) {
                (std::filesystem::path(directory_) / obstacle_file).string(), output_, encoding_);
       static_obstacles_written_ = true;
     }
-    series_->Add(s.time, 1, obstacle_file);
+    series_->Add(s.time, 1, "obstacles", obstacle_file);
   }
   if (IsSolid3d(scene)) WriteSurface(frame, body, fields);
 }
@@ -227,7 +227,7 @@ void FrameWriter::WriteSurface(int frame, const VtkMesh& body, const ElementFiel
   }
   const std::string file = Numbered("surface", frame);
   WriteVtu(surface, (std::filesystem::path(directory_) / file).string(), output_, encoding_);
-  series_->Add(sim_.state().time, 2, file);
+  series_->Add(sim_.state().time, 2, "surface", file);
 }
 
 }  // namespace ipstep

@@ -1,7 +1,7 @@
 // --frames=DIR: a ParaView time series of a run. DIR/run.pvd lists, for each
 // frame at its simulated time (the `timestep`, so ParaView's time slider shows
-// seconds), these parts, each a block of its own:
-//   0  the body, DIR/frame_NNNNN.vtu: the nodes (point data "velocity" and,
+// seconds), these parts, each a block of its own with its name:
+//   0  "body", DIR/frame_NNNNN.vtu: the nodes (point data "velocity" and,
 //      with contact, "contact_force": minus the gradient of the barrier
 //      energy, the force the contact terms exert on each node [N]); cells:
 //      springs as lines, as triangles the surface triangles the scene declares
@@ -12,9 +12,9 @@
 //      2 particle, 3 tetrahedron) and, for an elastic solid, the per-element
 //      "J", "energy_density" and "von_mises_stress" (io/element_fields.h; 0 on
 //      the cells that are not elements and where a field is not defined);
-//   1  for scenes with contact obstacles, the obstacles (io/obstacle_mesh.h):
+//   1  "obstacles", for scenes with contact obstacles (io/obstacle_mesh.h):
 //      DIR/obstacles.vtu when none moves, else DIR/obstacles_NNNNN.vtu;
-//   2  for a 3D elastic solid, its boundary, DIR/surface_NNNNN.vtu: the
+//   2  "surface", for a 3D elastic solid: its boundary, DIR/surface_NNNNN.vtu: the
 //      boundary triangles on the boundary nodes, with the body's point data
 //      and, per triangle, the fields of the element it bounds.
 // The files are binary (zlib-compressed by default) or ASCII: VtkEncoding

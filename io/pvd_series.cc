@@ -33,13 +33,14 @@ PvdSeries::PvdSeries(const std::string& path, const std::string& output)
   WriteClosingTags();
 }
 
-void PvdSeries::Add(double time, int part, const std::string& file) {
+void PvdSeries::Add(double time, int part, const std::string& name, const std::string& file) {
   std::ostream& out = file_.stream();
   out.seekp(end_of_entries_);
   char digits[32];  // the shortest text that reads back as `time`
   const auto printed = std::to_chars(digits, digits + sizeof(digits), time);
   out << "<DataSet timestep=\"" << std::string(digits, printed.ptr) << "\" group=\"\" part=\""
-      << part << "\" file=\"" << XmlAttribute(file) << "\"/>\n";
+      << part << "\" name=\"" << XmlAttribute(name) << "\" file=\"" << XmlAttribute(file)
+      << "\"/>\n";
   end_of_entries_ = out.tellp();
   WriteClosingTags();
 }

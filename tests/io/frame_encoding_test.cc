@@ -146,7 +146,7 @@ TEST_F(FrameEncoding, SolidIsTetrahedraWithFieldsAndSurface) {
   EXPECT_EQ(surface.Values("types"), std::vector<double>(triangles, 5.0));
   EXPECT_EQ(surface.Values("J").size(), triangles);
   const std::string pvd = ReadFile(Dir(VtkEncoding::kZlib) / "run.pvd");
-  EXPECT_NE(pvd.find("part=\"2\" file=\"surface_00003.vtu\""), std::string::npos);
+  EXPECT_NE(pvd.find("part=\"2\" name=\"surface\" file=\"surface_00003.vtu\""), std::string::npos);
 }
 
 ipstep::Solid OneTetrahedron(ipstep::ElasticModel model) {
@@ -226,12 +226,13 @@ TEST(ElementFields, InvertedElementHasNoEnergy) {
 TEST_F(FrameEncoding, TimesAreShortestRoundTrip) {
   {
     ipstep::PvdSeries series((dir_ / "run.pvd").string(), "frames");
-    series.Add(0.98, 0, "a.vtu");
-    series.Add(0.1 + 0.2, 0, "b.vtu");
-    series.Add(49 * 0.02, 0, "c.vtu");
+    series.Add(0.98, 0, "body", "a.vtu");
+    series.Add(0.1 + 0.2, 0, "body", "b.vtu");
+    series.Add(49 * 0.02, 0, "body", "c.vtu");
   }
   const std::string pvd = ReadFile(dir_ / "run.pvd");
-  EXPECT_NE(pvd.find("timestep=\"0.98\" group=\"\" part=\"0\" file=\"a.vtu\""), std::string::npos);
+  EXPECT_NE(pvd.find("timestep=\"0.98\" group=\"\" part=\"0\" name=\"body\" file=\"a.vtu\""),
+            std::string::npos);
   EXPECT_NE(pvd.find("timestep=\"0.30000000000000004\""), std::string::npos);
   std::smatch m;
   const std::string c = pvd.substr(pvd.find("timestep", pvd.find("b.vtu")));
