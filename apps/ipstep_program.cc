@@ -45,8 +45,10 @@ DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
 DEFINE_string(frames, "",
-              "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body, "
-              "obstacles) at its simulated time; tools/animate.py DIR OUT.gif draws it");
+              "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body: "
+              "a 3D solid's tetrahedra with J, energy density, von Mises stress; obstacles; a 3D "
+              "solid's surface) at its simulated time; docs/paraview.md; tools/animate.py DIR "
+              "OUT.gif or tools/render_frames.py (ParaView) draws it");
 DEFINE_string(frames_format, "zlib",
               "With --frames: zlib (binary, compressed: the smallest files), raw (binary) or "
               "ascii (text, for diffs); docs/paraview.md");

@@ -7,7 +7,8 @@
 # von_mises_stress and point data velocity, contact_force; each tetrahedron's
 # volume is J times its volume at rest; part 1 is the ground; part 2 the
 # boundary, a closed triangulated sphere (V - F/2 = 2); zlib, raw and ascii
-# read back to the same numbers. Exit code 77 (skipped) without an
+# read back to the same numbers; tools/render_frames.py rejects a missing
+# directory with exit code 2. Exit code 77 (skipped) without an
 # interpreter that has VTK's Python modules.
 #   vtk_reader_test.sh IPSTEP WORK_DIR
 set -euo pipefail
@@ -102,3 +103,14 @@ for format in ("raw", "ascii"):
 print(f"{len(times)} frames in zlib, raw and ascii read by VTK: tetrahedra, J, energy_density, "
       "von_mises_stress, velocity, contact_force, surface, times")
 PY
+# tools/render_frames.py (ParaView, not needed here): bad input is exit code 2
+# naming the file, before ParaView is imported.
+if "$python" "$(dirname "$0")/../../tools/render_frames.py" "$work/none" "$work/x.gif" \
+  2> "$work/err"; then
+  echo "render_frames.py accepted a missing directory"
+  exit 1
+elif [ $? -ne 2 ] || ! grep -q "none/run.pvd" "$work/err"; then
+  echo "render_frames.py: expected exit code 2 naming run.pvd:"
+  cat "$work/err"
+  exit 1
+fi
