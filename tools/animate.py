@@ -227,8 +227,13 @@ def draw_3d(ax, body, obstacles, lo, hi):
     faces += triangles
     colors += shaded(triangles, (0.35, 0.6, 0.85))
     if faces:
+        # Drawn far to near by each face's nearest vertex ("min"), not its
+        # centroid: a large sphere face whose centroid is nearer than the
+        # small cloth triangles resting on it was drawn over them (the sphere
+        # showed through the cloth). Still a painter's algorithm, not a depth
+        # buffer: tools/render_frames.py (ParaView) has one.
         ax.add_collection3d(Poly3DCollection(faces, facecolors=colors, edgecolors=colors,
-                                             linewidths=0.3, zorder=1))
+                                             linewidths=0.3, zorder=1, zsort="min"))
     if not triangles:
         springs = [[view(body.points[i]) for i in c] for c in body.cells_of(VTK_LINE)]
         ax.add_collection3d(Line3DCollection(springs, colors="#08519c", linewidths=0.8,
