@@ -367,10 +367,18 @@ bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
 }
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {
-  return begin_energy_input_ + time_.Work(x_start, x_end, static_cast<int>(accepted_.size()),
-                                          [this](const double* x, double t, double* energy) {
-                                            return BarrierEnergy(x, t, energy);
-                                          });
+  // Friction against moving obstacles: the force F = -dR/dv = -(1/slope)
+  // dR/dx at the step's end (its implicit value) does the work h F . u.
+  double friction_work = 0.0, rate = 0.0;
+  if (friction_enabled_ && context_->velocity_slope > 0.0 &&
+      potential_->FrameDissipationRate(x_end, &rate)) {
+    friction_work = -context_->time_step / context_->velocity_slope * rate;
+  }
+  return begin_energy_input_ + friction_work +
+         time_.Work(x_start, x_end, static_cast<int>(accepted_.size()),
+                    [this](const double* x, double t, double* energy) {
+                      return BarrierEnergy(x, t, energy);
+                    });
 }
 
 bool ContactFilter::RefreshTerms(const double* x) {

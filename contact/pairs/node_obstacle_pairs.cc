@@ -156,6 +156,7 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
       term.family = c_.friction_family;
       term.impulsive = true;
       term.nodes = {f.node};
+      term.frame_velocity = f.obstacle_velocity;
       term.cost = std::make_unique<ObstacleFriction>(c_.step, f.node, f.tangents,
                                                      f.obstacle_velocity, eps_v, side, c);
       const double scale = mu * f.normal_force;
