@@ -650,6 +650,43 @@ TEST_F(ProgramInput, TuneRecommendsARunThatReachesTheTarget) {
   EXPECT_NE(bad.output.find("--target_error"), std::string::npos) << bad.output;
 }
 
+// --match_default: the target is the default configuration's own measured
+// error (backward Euler at h = 0.1 s on the oscillator: |x - (1 + 0.1 cos 10)|
+// at t = 10 s), and the recommendation, run, is within it.
+TEST_F(ProgramInput, TuneMatchDefaultTargetsTheDefaultsOwnError) {
+  const Outcome o = ipstep::testing::RunProgram(
+      std::string(IPSTEP_TUNE_BINARY) + " --scene=oscillator --match_default 2>/dev/null; exit $?",
+      "");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string prefix = "error target ";
+  const size_t at = o.output.find(prefix);
+  ASSERT_NE(at, std::string::npos) << o.output;
+  const double target = std::stod(o.output.substr(at + prefix.size()));
+  EXPECT_NE(o.output.find("m (the default's error)"), std::string::npos) << o.output;
+  // x at t = 10 s of an ipstep run, node 1's first coordinate.
+  auto final_x = [this](const std::string& arguments) {
+    const std::string positions = (dir_ / "run.csv").string();
+    const Outcome run = RunIpstep(arguments + " --positions=" + positions);
+    EXPECT_EQ(run.exit_code, 0) << arguments << "\n" << run.output;
+    std::ifstream in(positions);
+    std::string line;
+    for (int k = 0; k < 3; ++k) std::getline(in, line);  // header, node 0, node 1
+    return std::stod(line.substr(line.find(',') + 1));
+  };
+  const double exact = 1.0 + 0.1 * std::cos(10.0);
+  const double error = std::abs(final_x("--scene=oscillator") - exact);  // the default
+  EXPECT_NEAR(target, error, 1e-3 * error) << o.output;
+  const size_t command = o.output.find("\n  ipstep ");
+  ASSERT_NE(command, std::string::npos) << o.output;
+  const std::string recommended =
+      o.output.substr(command + 9, o.output.find('\n', command + 3) - command - 9);
+  EXPECT_LE(std::abs(final_x(recommended) - exact), target) << recommended;
+  const Outcome both = ipstep::testing::RunProgram(
+      std::string(IPSTEP_TUNE_BINARY) + " --scene=oscillator --match_default --target_error=1", "");
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("--match_default"), std::string::npos) << both.output;
+}
+
 TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {
   for (const char* scene : {"oscillator", "spring_pendulum", "cloth", "fpu", "hanging_square"}) {
     for (const char* integrator :
