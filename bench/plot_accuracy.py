@@ -1,0 +1,146 @@
+"""Accuracy plots of plot_benchmarks.py (docs/benchmarks.md): fixed h against
+--adaptive per scene (bench/adaptive_steps.sh's CSV files), with ipstep_tune's
+answer drawn on its scene's panel, and one ipstep_tune search (--tune_output):
+every run, the Pareto front, the target, the pick and the default.
+
+Needs matplotlib (plot_benchmarks.py sets the Agg backend before importing this).
+"""
+import csv
+import math
+import os
+from collections import defaultdict
+
+import matplotlib.pyplot as plt
+
+
+def number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def scene_label(scene):
+    """problems/self_contact/two_cloths_box.json -> two_cloths_box"""
+    base = os.path.basename(scene)
+    return base[:-5] if base.endswith(".json") else base
+
+
+def save(fig, out, name):
+    os.makedirs(out, exist_ok=True)
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    print(f"wrote {out}/{name}.png and .svg")
+
+
+def read_tune(path):
+    """An ipstep_tune --tune_output CSV, numbers parsed."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for key in ("dt", "tolerance", "error_tolerance", "steps", "failed", "iterations",
+                    "seconds", "error"):
+            r[key] = number(r.get(key))
+        r["adaptive"] = r.get("adaptive") == "1"
+        r.setdefault("role", "search")
+    return rows
+
+
+def pareto(rows):
+    """The runs of the search with an error and no failed step, by cost, each more accurate
+    than every cheaper one (ipstep_tune's front: apps/tune_program.cc)."""
+    measured = [r for r in rows if r["role"] in ("search", "pick") and r["error"] == r["error"]
+                and r["failed"] == 0]
+    measured.sort(key=lambda r: r["seconds"])
+    front, best = [], math.inf
+    for r in measured:
+        if r["error"] < best:
+            best = r["error"]
+            front.append(r)
+    return front
+
+
+def tune_label(r):
+    what = (f'adaptive E = {r["error_tolerance"]:.3g} m' if r["adaptive"] else
+            f'h = {r["dt"]:.3g} s, tol {r["tolerance"]:.2g}')
+    return f'{r["integrator"]} × {r["optimizer"]}, {what}'
+
+
+def draw_tune(ax, rows, target):
+    """ipstep_tune's pick (star) and the default (cross) on a cost-error axis."""
+    for r in rows:
+        if r["role"] == "pick":
+            ax.loglog([r["seconds"]], [r["error"]], "*", color="black", markersize=14,
+                      label=f"ipstep_tune pick for {target:g} m: {tune_label(r)}")
+        elif r["role"] == "default" and r["error"] == r["error"]:
+            ax.loglog([r["seconds"]], [r["error"]], "X", color="gray", markersize=9,
+                      label=f"default: {tune_label(r)}")
+    ax.axhline(target, color="black", linestyle=":", linewidth=1, label=f"target {target:g} m")
+
+
+def adaptive(paths, out, name="adaptive_steps", tunes=()):
+    """Work-precision of fixed against adaptive steps (bench/adaptive_steps.sh), one panel per
+    scene over all `paths`; `tunes`: (scene, target, TUNE.csv), drawn on that scene's panel."""
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            rows += list(csv.DictReader(f))
+    scenes = []
+    for r in rows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    cols = min(len(scenes), 2 if len(scenes) == 4 else 3)
+    nrows = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(5.2 * cols, 4.4 * nrows), squeeze=False)
+    for ax in list(axes.flat)[len(scenes):]:
+        ax.set_visible(False)
+    for ax, scene in zip(axes.flat, scenes):
+        groups = defaultdict(list)
+        for r in rows:
+            error, seconds = number(r["position_error"]), number(r["wall_s"])
+            if r["scene"] == scene and error > 0 and seconds > 0 and r["failed"] == "0":
+                key = (r["integrator"], r.get("optimizer") or "newton", r["mode"])
+                groups[key].append((seconds, error))
+        for (integrator, optimizer, mode), points in sorted(groups.items()):  # as run
+            ax.loglog([p[0] for p in points], [p[1] for p in points],
+                      "o-" if mode == "fixed" else "s--", label=f"{integrator} × {optimizer}, {mode}")
+        for tune_scene, target, path in tunes:
+            if scene_label(tune_scene) == scene_label(scene):
+                draw_tune(ax, read_tune(path), target)
+        ax.set_title(scene_label(scene))
+        ax.set_xlabel("wall time of the run [s]")
+        ax.set_ylabel("final position error [m]")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
+    save(fig, out, name)
+
+
+def tune(path, out, name, target):
+    """One ipstep_tune search: every run with an error (hollow: with failed steps), the front,
+    the target, the pick and the default."""
+    rows = read_tune(path)
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    groups = defaultdict(list)
+    for r in rows:
+        if r["role"] in ("search", "pick") and r["error"] > 0 and r["seconds"] > 0:
+            groups[(r["integrator"], r["optimizer"], r["adaptive"])].append(r)
+    for (integrator, optimizer, is_adaptive), runs in sorted(groups.items()):
+        ok = [r for r in runs if r["failed"] == 0]
+        failed = [r for r in runs if r["failed"] != 0]
+        line = ax.loglog([r["seconds"] for r in ok], [r["error"] for r in ok],
+                         "s" if is_adaptive else "o", linestyle="none", alpha=0.7,
+                         label=f'{integrator} × {optimizer}, {"adaptive" if is_adaptive else "fixed h"}')
+        ax.loglog([r["seconds"] for r in failed], [r["error"] for r in failed],
+                  "s" if is_adaptive else "o", linestyle="none", markerfacecolor="none",
+                  color=line[0].get_color())
+    front = pareto(rows)
+    ax.step([r["seconds"] for r in front], [r["error"] for r in front], where="post",
+            color="black", linewidth=1, label="Pareto front")
+    draw_tune(ax, rows, target)
+    ax.set_xlabel("wall time of the run [s]")
+    ax.set_ylabel("final position error [m]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    save(fig, out, name)
+    return front
