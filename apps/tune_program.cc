@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,6 +58,14 @@ DEFINE_string(tune_output, "", "CSV file: one row per run of the search");
 
 namespace ipstep {
 namespace {
+
+// The fixed steps of the search, coarse to fine, in units of the scene's step.
+constexpr double kStepFactors[] = {2.0, 1.0, 0.5, 0.25, 0.125};
+// With --match_default, "equal error" is equal to about three digits: the
+// target is itself a measurement, and runs that differ from the default only
+// in h or the tolerance often end within round-off of its error (backward
+// Euler on the cloth, whose error is its damped vibration).
+constexpr double kMatchSlack = 1e-3;
 
 struct Candidate {
   std::string integrator, optimizer;
@@ -221,6 +230,8 @@ int Run(const EffectRegistry& registry) {
     }
     target = fallback.error;
   }
+  // What counts as within the target.
+  const double within = FLAGS_match_default ? target * (1.0 + kMatchSlack) : target;
   std::printf(
       "scene %s: error target %.3g %s%s at t = %g s (%s)\n", scene.name.c_str(), target,
       position ? "m" : "energy scales", FLAGS_match_default ? " (the default's error)" : "", t_end,
@@ -244,7 +255,7 @@ int Run(const EffectRegistry& registry) {
             !family.empty()) {
           break;
         }
-        for (double factor : {2.0, 1.0, 0.5, 0.25, 0.125}) {
+        for (double factor : kStepFactors) {
           Candidate c = Fixed(integrator, optimizer,
                               t_end / std::max(1.0, std::round(t_end / (dt * factor))), tolerance);
           family.push_back(c);
@@ -260,7 +271,9 @@ int Run(const EffectRegistry& registry) {
       // Coarse to fine within each sequence (5 fixed h per solver tolerance,
       // then 3 adaptive); stop a sequence at its first run within the target.
       std::vector<size_t> starts;
-      for (size_t begin = 0; begin + 3 < family.size(); begin += 5) starts.push_back(begin);
+      for (size_t begin = 0; begin + 3 < family.size(); begin += std::size(kStepFactors)) {
+        starts.push_back(begin);
+      }
       starts.push_back(family.size() - 3);
       for (size_t s = 0; s < starts.size(); ++s) {
         const size_t end = s + 1 < starts.size() ? starts[s + 1] : family.size();
@@ -275,7 +288,7 @@ int Run(const EffectRegistry& registry) {
                        Label(c).c_str(), c.error, c.seconds, c.steps,
                        std::isnan(c.error) ? (" (" + c.status + ")").c_str() : "");
           runs.push_back(c);
-          if (c.error <= target) break;
+          if (c.error <= within) break;
         }
       }
     }
@@ -284,6 +297,7 @@ int Run(const EffectRegistry& registry) {
   auto write_runs = [&](const std::vector<Candidate>& rows) {
     if (!tune_output) return;
     std::ostream& out = tune_output->stream();
+    out.precision(10);
     out << "integrator,optimizer,adaptive,dt,tolerance,error_tolerance,steps,failed,iterations,"
            "seconds,error,role\n";
     for (const Candidate& c : rows) {
@@ -312,8 +326,8 @@ int Run(const EffectRegistry& registry) {
     if (c.error >= best_error) continue;
     best_error = c.error;
     std::printf("| %s | %d | %.3g | %.3g%s |\n", Label(c).c_str(), c.steps, c.seconds, c.error,
-                c.error <= target ? " (within target)" : "");
-    if (winner == nullptr && c.error <= target) winner = &c;
+                c.error <= within ? " (within target)" : "");
+    if (winner == nullptr && c.error <= within) winner = &c;
   }
   if (winner == nullptr) {
     std::printf("\nno run reached the target %g; the most accurate: %.3g\n", target, best_error);
@@ -321,28 +335,41 @@ int Run(const EffectRegistry& registry) {
     return 0;
   }
   winner->role = "pick";
+  const size_t winner_index = static_cast<size_t>(winner - runs.data());
   std::printf("\nrecommended (%.3g s, error %.3g):\n  %s\n", winner->seconds, winner->error,
               CommandLine(FLAGS_scene, *winner, t_end).c_str());
-  if (fallback.error <= target) {
+  // The comparison with the default from a second, back-to-back run of each
+  // (the fastest of each one's two runs: a shared machine slows runs at random).
+  Candidate pick_again = *winner, default_again = fallback;
+  pick_again.role = default_again.role = "timing";
+  measure_against(&pick_again, reference);
+  measure_against(&default_again, reference);
+  const double pick_seconds = std::min(winner->seconds, pick_again.seconds);
+  const double default_seconds = std::min(fallback.seconds, default_again.seconds);
+  if (fallback.error <= within) {
     std::printf(
         "the default (backward_euler + newton at h = %g s): error %.3g, %.3f s: %.1fx "
-        "the recommended time\n",
-        fallback.dt, fallback.error, fallback.seconds, fallback.seconds / winner->seconds);
+        "the recommended time (fastest of two runs each: %.3g s against %.3g s; iterations "
+        "%ld against %ld)\n",
+        fallback.dt, fallback.error, default_seconds, default_seconds / pick_seconds,
+        default_seconds, pick_seconds, fallback.iterations, winner->iterations);
   } else {
     std::printf(
         "the default (backward_euler + newton at h = %g s) does not reach it: error "
         "%.3g in %.3f s\n",
-        fallback.dt, fallback.error, fallback.seconds);
+        fallback.dt, fallback.error, default_seconds);
   }
+  runs.push_back(pick_again);
+  runs.push_back(default_again);
   if (position && !reference.exact) {
     ReferenceOptions finer = reference_options;
     finer.refinement = 128;
     const ReferenceSolution tight = ComputeReference(scene, base, finer, dt, t_end);
-    Candidate again = *winner;
+    Candidate again = runs[winner_index];
     again.role = "validation";
     measure_against(&again, tight);
     std::printf("validated against %s: error %.3g (%s the target)\n", tight.description.c_str(),
-                again.error, again.error <= target ? "within" : "NOT within");
+                again.error, again.error <= within ? "within" : "NOT within");
     runs.push_back(again);
   }
   runs.push_back(fallback);
