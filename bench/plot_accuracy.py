@@ -67,21 +67,44 @@ def tune_label(r):
     return f'{r["integrator"]} × {r["optimizer"]}, {what}'
 
 
-def draw_tune(ax, rows, target):
-    """ipstep_tune's pick (star) and the default (cross) on a cost-error axis."""
+def draw_tune(ax, rows, target, cost="wall"):
+    """ipstep_tune's pick (star) and the default (cross) on a cost-error axis (`cost`: wall,
+    the run loop's seconds in ipstep_tune, or iterations)."""
+    x = "seconds" if cost == "wall" else "iterations"
+
+    def cost_of(r):  # the faster of its two runs (role timing: the same configuration again)
+        again = [t[x] for t in rows if t["role"] == "timing" and all(
+            t[k] == r[k] for k in ("integrator", "optimizer", "adaptive", "dt", "tolerance",
+                                   "error_tolerance"))]
+        return min([r[x]] + again)
+
     for r in rows:
         if r["role"] == "pick":
-            ax.loglog([r["seconds"]], [r["error"]], "*", color="black", markersize=14,
-                      label=f"ipstep_tune pick for {target:g} m: {tune_label(r)}")
+            ax.loglog([cost_of(r)], [r["error"]], "*", color="black", markersize=14,
+                      label=f"ipstep_tune pick for {target:.3g} m: {tune_label(r)}")
         elif r["role"] == "default" and r["error"] == r["error"]:
-            ax.loglog([r["seconds"]], [r["error"]], "X", color="gray", markersize=9,
+            ax.loglog([cost_of(r)], [r["error"]], "X", color="gray", markersize=9,
                       label=f"default: {tune_label(r)}")
-    ax.axhline(target, color="black", linestyle=":", linewidth=1, label=f"target {target:g} m")
+    ax.axhline(target, color="black", linestyle=":", linewidth=1, label=f"target {target:.3g} m")
 
 
-def adaptive(paths, out, name="adaptive_steps", tunes=()):
+COLORS = {}
+
+
+def color(label):
+    """One colour per integrator x optimiser, the same in every panel."""
+    if label not in COLORS:
+        cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        COLORS[label] = cycle[len(COLORS) % len(cycle)]
+    return COLORS[label]
+
+
+def adaptive(paths, out, name="adaptive_steps", tunes=(), cost="wall"):
     """Work-precision of fixed against adaptive steps (bench/adaptive_steps.sh), one panel per
-    scene over all `paths`; `tunes`: (scene, target, TUNE.csv), drawn on that scene's panel."""
+    scene over all `paths`; `tunes`: (scene, target, TUNE.csv), drawn on that scene's panel.
+    Colour: integrator x optimiser; solid circles: fixed h at ipstep's default solver tolerance,
+    dotted hollow circles: fixed h at another one, dashed squares: --adaptive. `cost`: wall (the
+    run's wall time) or iterations (the run's solver iterations)."""
     rows = []
     for path in paths:
         with open(path, newline="") as f:
@@ -98,18 +121,32 @@ def adaptive(paths, out, name="adaptive_steps", tunes=()):
     for ax, scene in zip(axes.flat, scenes):
         groups = defaultdict(list)
         for r in rows:
-            error, seconds = number(r["position_error"]), number(r["wall_s"])
-            if r["scene"] == scene and error > 0 and seconds > 0 and r["failed"] == "0":
-                key = (r["integrator"], r.get("optimizer") or "newton", r["mode"])
-                groups[key].append((seconds, error))
-        for (integrator, optimizer, mode), points in sorted(groups.items()):  # as run
-            ax.loglog([p[0] for p in points], [p[1] for p in points],
-                      "o-" if mode == "fixed" else "s--", label=f"{integrator} × {optimizer}, {mode}")
+            error = number(r["position_error"])
+            x = number(r["wall_s"] if cost == "wall" else r.get("iterations"))
+            if r["scene"] == scene and error > 0 and x > 0 and r["failed"] == "0":
+                tolerance = r.get("solver_tolerance") or "1e-5"
+                tolerance = "tied" if r["mode"] == "adaptive" else tolerance
+                key = (r["integrator"], r.get("optimizer") or "newton", r["mode"], tolerance)
+                groups[key].append((x, error))
+        for (integrator, optimizer, mode, tolerance), points in sorted(groups.items()):  # as run
+            label = f"{integrator} × {optimizer}"
+            if mode == "adaptive":
+                style = dict(marker="s", linestyle="--")
+                label += ", adaptive"
+            elif number(tolerance) == 1e-5:
+                style = dict(marker="o", linestyle="-")
+                label += ", fixed h"
+            else:
+                style = dict(marker="o", linestyle=":", markerfacecolor="none")
+                label += f", fixed h, tol {tolerance} m/s"
+            ax.loglog([p[0] for p in points], [p[1] for p in points], color=color(
+                f"{integrator} × {optimizer}"), label=label, **style)
         for tune_scene, target, path in tunes:
             if scene_label(tune_scene) == scene_label(scene):
-                draw_tune(ax, read_tune(path), target)
+                draw_tune(ax, read_tune(path), target, cost)
         ax.set_title(scene_label(scene))
-        ax.set_xlabel("wall time of the run [s]")
+        ax.set_xlabel("wall time of the run [s]" if cost == "wall" else
+                      "solver iterations of the run")
         ax.set_ylabel("final position error [m]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=6)
@@ -120,7 +157,7 @@ def tune(path, out, name, target):
     """One ipstep_tune search: every run with an error (hollow: with failed steps), the front,
     the target, the pick and the default."""
     rows = read_tune(path)
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(7, 4.6))
     groups = defaultdict(list)
     for r in rows:
         if r["role"] in ("search", "pick") and r["error"] > 0 and r["seconds"] > 0:
@@ -138,9 +175,9 @@ def tune(path, out, name, target):
     ax.step([r["seconds"] for r in front], [r["error"] for r in front], where="post",
             color="black", linewidth=1, label="Pareto front")
     draw_tune(ax, rows, target)
-    ax.set_xlabel("wall time of the run [s]")
+    ax.set_xlabel("wall time of the run [s] (pick and default: the faster of two runs)")
     ax.set_ylabel("final position error [m]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     save(fig, out, name)
     return front

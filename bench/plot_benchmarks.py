@@ -13,10 +13,11 @@
   plot_benchmarks.py scaling RESULTS.csv --out docs/img [--time min]
       scaling.{png,svg} and a markdown table with fitted exponents
   plot_benchmarks.py adaptive ADAPTIVE.csv... --out docs/img [--name adaptive_steps]
-                    [--tune SCENE,TARGET,TUNE.csv]...
+                    [--tune SCENE,TARGET,TUNE.csv]... [--cost wall|iterations]
       NAME.{png,svg}  error vs wall time, fixed h against --adaptive, one panel
                       per scene (bench/adaptive_steps.sh's CSV files); --tune draws
-                      ipstep_tune's pick and the default for TARGET [m] on SCENE's panel
+                      ipstep_tune's pick and the default for TARGET [m] on SCENE's panel;
+                      --cost iterations: solver iterations (machine-independent) on x
   plot_benchmarks.py tune TUNE.csv --target E --out docs/img --name NAME
       NAME.{png,svg}  one ipstep_tune search (--tune_output): every run, the Pareto
                       front, the target, the pick and the default (bench/plot_accuracy.py)
@@ -322,6 +323,8 @@ def main():
     parser.add_argument("--tune", action="append", default=[], metavar="SCENE,TARGET,TUNE.csv",
                         help="adaptive: ipstep_tune's answer for TARGET [m] on SCENE's panel")
     parser.add_argument("--target", type=float, help="tune: the search's --target_error [m]")
+    parser.add_argument("--cost", choices=["wall", "iterations"], default="wall",
+                        help="adaptive: the x axis, wall time or solver iterations of a run")
     args = parser.parse_args()
     if args.mode == "adaptive":
         tunes = []
@@ -330,7 +333,8 @@ def main():
             if len(fields) != 3 or not plot_accuracy.number(fields[1]) > 0:
                 parser.error(f"--tune={spec}: give SCENE,TARGET,TUNE.csv with TARGET > 0")
             tunes.append((fields[0], float(fields[1]), fields[2]))
-        plot_accuracy.adaptive(args.csv, args.out, args.name or "adaptive_steps", tunes)
+        plot_accuracy.adaptive(args.csv, args.out, args.name or "adaptive_steps", tunes,
+                               args.cost)
         return
     if args.mode == "tune":
         if len(args.csv) != 1 or not args.name or not (args.target and args.target > 0):
