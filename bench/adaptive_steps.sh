@@ -47,11 +47,15 @@ run() {  # scene integrator optimizer mode value solver_tolerance args...: appen
   local scene=$1 integrator=$2 optimizer=$3 mode=$4 value=$5 solver_tolerance=$6; shift 6
   local start end log
   start=$(date +%s.%N)
+  local code=0
   log=$(timeout "${MAX_SECONDS:-120}" "$ipstep" --scene="$scene" --integrator="$integrator" --optimizer="$optimizer" --num_threads=1 --progress=false \
-        --on_failure=continue --positions="$work/run.csv" "$@" 2>&1 || true)
+        --on_failure=continue --positions="$work/run.csv" "$@" 2>&1) || code=$?
   end=$(date +%s.%N)
   local done_line steps failed rejected per_step
   done_line=$(echo "$log" | grep '^done:' || echo "done: 0 steps, timeout failed")
+  # ipstep stops at timeout's SIGTERM after its step and reports the steps
+  # done (and writes the positions there): a row with failed = timeout.
+  if [ "$code" = 124 ]; then done_line=$(echo "$done_line" | sed 's/[0-9]* failed/timeout failed/'); fi
   steps=$(echo "$done_line" | sed 's/done: \([0-9]*\) steps.*/\1/')
   failed=$(echo "$done_line" | sed 's/.* \([0-9a-z]*\) failed.*/\1/')
   rejected=$(echo "$done_line" | grep -o '[0-9]* rejected' | cut -d' ' -f1 || true)

@@ -181,3 +181,52 @@ def tune(path, out, name, target):
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     save(fig, out, name)
     return front
+
+
+def read_adaptive(paths):
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            rows += list(csv.DictReader(f))
+    for r in rows:
+        r["optimizer"] = r.get("optimizer") or "newton"
+        r["solver_tolerance"] = r.get("solver_tolerance") or ("tied" if r["mode"] == "adaptive"
+                                                              else "1e-5")
+        for key in ("position_error", "wall_s", "iterations", "steps"):
+            r[key] = number(r.get(key))
+    return [r for r in rows if r["failed"] == "0" and r["position_error"] > 0]
+
+
+def cheapest_fixed(rows, run, cost):
+    """The fixed-h run of `run`'s scene, integrator and optimiser (any solver tolerance) with the
+    least `cost` (iterations or wall_s) among those at most as far off as `run`; None if none."""
+    fixed = [r for r in rows if r["mode"] == "fixed" and r["position_error"] <= run["position_error"]
+             and all(r[k] == run[k] for k in ("scene", "integrator", "optimizer"))]
+    return min(fixed, key=lambda r: r[cost], default=None)
+
+
+def adaptive_table(paths):
+    """Markdown: each --adaptive run against the cheapest fixed h (same integrator x optimiser,
+    any solver tolerance) that is at least as accurate, in iterations and in wall time."""
+    rows = read_adaptive(paths)
+    print("| scene | integrator × optimiser | E [m] | error [m] (÷ E) | steps | iterations | "
+          "wall [s] | cheapest fixed h at ≤ that error: h [s], tol [m/s], iterations, wall [s] | "
+          "adaptive ÷ fixed: iterations, wall |")
+    print("|---|---|---:|---:|---:|---:|---:|---|---|")
+    for run in rows:
+        if run["mode"] != "adaptive":
+            continue
+        by_iterations = cheapest_fixed(rows, run, "iterations")
+        by_wall = cheapest_fixed(rows, run, "wall_s")
+        if by_iterations is None:
+            fixed, ratio = "none reaches it", "—"
+        else:
+            fixed = (f'{by_iterations["dt_or_tolerance"]}, {by_iterations["solver_tolerance"]}, '
+                     f'{by_iterations["iterations"]:.0f}, {by_wall["wall_s"]:.3g}')
+            ratio = (f'{run["iterations"] / by_iterations["iterations"]:.2f}, '
+                     f'{run["wall_s"] / by_wall["wall_s"]:.2f}')
+        error, tolerance = run["position_error"], number(run["dt_or_tolerance"])
+        print(f'| {scene_label(run["scene"])} | {run["integrator"]} × {run["optimizer"]} '
+              f'| {run["dt_or_tolerance"]} | {error:.2g} ({error / tolerance:.2g}) '
+              f'| {run["steps"]:.0f} | {run["iterations"]:.0f} | {run["wall_s"]:.3g} | {fixed} '
+              f'| {ratio} |')

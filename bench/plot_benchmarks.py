@@ -18,6 +18,9 @@
                       per scene (bench/adaptive_steps.sh's CSV files); --tune draws
                       ipstep_tune's pick and the default for TARGET [m] on SCENE's panel;
                       --cost iterations: solver iterations (machine-independent) on x
+  plot_benchmarks.py adaptive-table ADAPTIVE.csv...
+      markdown: each --adaptive run against the cheapest fixed h (same integrator x
+      optimiser, any solver tolerance) at most as far off, in iterations and wall time
   plot_benchmarks.py tune TUNE.csv --target E --out docs/img --name NAME
       NAME.{png,svg}  one ipstep_tune search (--tune_output): every run, the Pareto
                       front, the target, the pick and the default (bench/plot_accuracy.py)
@@ -314,7 +317,8 @@ def scaling(rows, out):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("mode", choices=["work-precision", "table", "scaling", "adaptive", "tune"])
+    parser.add_argument("mode", choices=["work-precision", "table", "scaling", "adaptive",
+                                         "adaptive-table", "tune"])
     parser.add_argument("csv", nargs="+")
     parser.add_argument("--out", default="docs/img")
     parser.add_argument("--baseline", default="projected_newton")
@@ -335,6 +339,9 @@ def main():
             tunes.append((fields[0], float(fields[1]), fields[2]))
         plot_accuracy.adaptive(args.csv, args.out, args.name or "adaptive_steps", tunes,
                                args.cost)
+        return
+    if args.mode == "adaptive-table":
+        plot_accuracy.adaptive_table(args.csv)
         return
     if args.mode == "tune":
         if len(args.csv) != 1 or not args.name or not (args.target and args.target > 0):

@@ -75,6 +75,24 @@ test -s "$work/plots/tune.png" || { echo "no tune.png"; exit 1; }
 "$python" "$source/bench/plot_benchmarks.py" adaptive "$source/bench/results/adaptive_steps.csv" \
   --name=with_tune --tune="oscillator,1e-4,$work/tune.csv" --out "$work/plots" > /dev/null
 test -s "$work/plots/with_tune.png" || { echo "no with_tune.png"; exit 1; }
+# adaptive-table: each adaptive run against the cheapest fixed h of its
+# integrator x optimiser that is at least as accurate (a failed run and another
+# optimiser's cheaper one do not count).
+cat > "$work/adaptive.csv" << 'CSV'
+scene,integrator,optimizer,mode,dt_or_tolerance,solver_tolerance,steps,failed,rejected,iterations,wall_s,position_error
+s,newmark,newton,fixed,0.01,1e-5,10,0,0,20,2.0,1e-3
+s,newmark,newton,fixed,0.005,1e-7,20,0,0,40,1.0,2e-4
+s,newmark,newton,fixed,0.001,1e-5,100,0,0,100,3.0,1e-4
+s,newmark,newton,fixed,0.002,1e-5,50,2,0,10,0.1,1e-5
+s,newmark,lbfgs,fixed,0.01,1e-5,10,0,0,5,0.1,1e-6
+s,newmark,newton,adaptive,1e-3,tied,30,0,1,30,1.5,3e-4
+s,newmark,newton,adaptive,1e-5,tied,300,0,1,300,9.0,5e-6
+CSV
+"$python" "$source/bench/plot_benchmarks.py" adaptive-table "$work/adaptive.csv" > "$work/adaptive.md"
+grep -q '| s | newmark × newton | 1e-3 | 0.0003 (0.3) | 30 | 30 | 1.5 | 0.005, 1e-7, 40, 1 | 0.75, 1.50 |' \
+  "$work/adaptive.md" || { cat "$work/adaptive.md"; exit 1; }
+grep -q '| s | newmark × newton | 1e-5 | 5e-06 (0.5) | 300 | 300 | 9 | none reaches it | — |' \
+  "$work/adaptive.md" || { cat "$work/adaptive.md"; exit 1; }
 if "$python" "$source/bench/plot_benchmarks.py" adaptive "$source/bench/results/adaptive_steps.csv" \
   --tune="oscillator,0,$work/tune.csv" --out "$work/plots" 2> "$work/bad.txt"; then
   echo "--tune with target 0 should be an error"; exit 1
