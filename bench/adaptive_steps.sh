@@ -32,7 +32,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$(dirname "$out")"
 fixed_tolerances=${FIXED_TOLERANCES:-default}
-echo "scene,integrator,optimizer,mode,dt_or_tolerance,solver_tolerance,steps,failed,rejected,iterations,wall_s,position_error" > "$out"
+echo "scene,t_end,integrator,optimizer,mode,dt_or_tolerance,solver_tolerance,steps,failed,rejected,iterations,wall_s,position_error" > "$out"
 error_of() {  # max node distance between two --positions files
   /usr/bin/python3 - "$1" "$2" <<'PY'
 import sys
@@ -60,7 +60,7 @@ run() {  # scene integrator optimizer mode value solver_tolerance args...: appen
   failed=$(echo "$done_line" | sed 's/.* \([0-9a-z]*\) failed.*/\1/')
   rejected=$(echo "$done_line" | grep -o '[0-9]* rejected' | cut -d' ' -f1 || true)
   per_step=$(echo "$done_line" | grep -o '[0-9.]* iterations/step' | cut -d' ' -f1 || true)
-  echo "$scene,$integrator,$optimizer,$mode,$value,$solver_tolerance,$steps,$failed,${rejected:-0}," \
+  echo "$scene,$t_end,$integrator,$optimizer,$mode,$value,$solver_tolerance,$steps,$failed,${rejected:-0}," \
        "$(printf '%.0f' "$(echo "${per_step:-0} * $steps" | bc)"),$(echo "$end - $start" | bc)," \
        "$(error_of "$work/run.csv" "$work/ref_${scene}.csv")" | tr -d ' ' >> "$out"
   rm -f "$work/run.csv"

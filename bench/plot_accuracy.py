@@ -67,16 +67,19 @@ def tune_label(r):
     return f'{r["integrator"]} × {r["optimizer"]}, {what}'
 
 
-def draw_tune(ax, rows, target, cost="wall"):
+TUNE_LABELS = ("ipstep_tune pick", "default:", "target ")
+
+
+def draw_tune(ax, rows, target, cost="wall", per=1.0):
     """ipstep_tune's pick (star) and the default (cross) on a cost-error axis (`cost`: wall,
-    the run loop's seconds in ipstep_tune, or iterations)."""
+    the run loop's seconds in ipstep_tune divided by `per`, or iterations)."""
     x = "seconds" if cost == "wall" else "iterations"
 
     def cost_of(r):  # the faster of its two runs (role timing: the same configuration again)
         again = [t[x] for t in rows if t["role"] == "timing" and all(
             t[k] == r[k] for k in ("integrator", "optimizer", "adaptive", "dt", "tolerance",
                                    "error_tolerance"))]
-        return min([r[x]] + again)
+        return min([r[x]] + again) / (per if cost == "wall" else 1.0)
 
     for r in rows:
         if r["role"] == "pick":
@@ -104,7 +107,8 @@ def adaptive(paths, out, name="adaptive_steps", tunes=(), cost="wall"):
     scene over all `paths`; `tunes`: (scene, target, TUNE.csv), drawn on that scene's panel.
     Colour: integrator x optimiser; solid circles: fixed h at ipstep's default solver tolerance,
     dotted hollow circles: fixed h at another one, dashed squares: --adaptive. `cost`: wall (the
-    run's wall time) or iterations (the run's solver iterations)."""
+    run's wall time, per simulated second when every row has its t_end) or iterations (the run's
+    solver iterations). A tune drawn on a panel must have run to that scene's end time."""
     rows = []
     for path in paths:
         with open(path, newline="") as f:
@@ -118,11 +122,17 @@ def adaptive(paths, out, name="adaptive_steps", tunes=(), cost="wall"):
     fig, axes = plt.subplots(nrows, cols, figsize=(5.2 * cols, 4.4 * nrows), squeeze=False)
     for ax in list(axes.flat)[len(scenes):]:
         ax.set_visible(False)
+    # Wall time per simulated second when every row has its end time.
+    per_second = cost == "wall" and all(number(r.get("t_end")) > 0 for r in rows)
     for ax, scene in zip(axes.flat, scenes):
         groups = defaultdict(list)
+        t_end = 1.0
         for r in rows:
             error = number(r["position_error"])
             x = number(r["wall_s"] if cost == "wall" else r.get("iterations"))
+            if per_second and r["scene"] == scene:
+                t_end = number(r["t_end"])
+                x /= t_end
             if r["scene"] == scene and error > 0 and x > 0 and r["failed"] == "0":
                 tolerance = r.get("solver_tolerance") or "1e-5"
                 tolerance = "tied" if r["mode"] == "adaptive" else tolerance
@@ -143,13 +153,28 @@ def adaptive(paths, out, name="adaptive_steps", tunes=(), cost="wall"):
                 f"{integrator} × {optimizer}"), label=label, **style)
         for tune_scene, target, path in tunes:
             if scene_label(tune_scene) == scene_label(scene):
-                draw_tune(ax, read_tune(path), target, cost)
-        ax.set_title(scene_label(scene))
-        ax.set_xlabel("wall time of the run [s]" if cost == "wall" else
-                      "solver iterations of the run")
+                draw_tune(ax, read_tune(path), target, cost, t_end)
+        ax.set_title(scene_label(scene) + (f" to t = {t_end:g} s" if per_second else ""))
+        ax.set_xlabel("solver iterations of the run" if cost != "wall" else
+                      "wall time per simulated second [s]" if per_second else
+                      "wall time of the run [s]")
         ax.set_ylabel("final position error [m]")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=6)
+    # One legend for the styles (the same in every panel) below the panels; each panel's own
+    # for its ipstep_tune answer.
+    styles = {}
+    for ax in axes.flat:
+        handles, labels = ax.get_legend_handles_labels()
+        tune_items = [(h, l) for h, l in zip(handles, labels) if l.startswith(TUNE_LABELS)]
+        if tune_items:
+            ax.legend(*zip(*tune_items), fontsize=6, loc="lower left")
+        for h, l in zip(handles, labels):
+            if not l.startswith(TUNE_LABELS):
+                styles.setdefault(l, h)
+    labels = sorted(styles)
+    fig.legend([styles[l] for l in labels], labels, loc="upper center", fontsize=7, ncol=3,
+               bbox_to_anchor=(0.5, 0.0))
+    fig.tight_layout()
     save(fig, out, name)
 
 
