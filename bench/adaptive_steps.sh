@@ -62,18 +62,20 @@ run() {  # scene integrator optimizer mode value solver_tolerance args...: appen
   per_step=$(echo "$done_line" | grep -o '[0-9.]* iterations/step' | cut -d' ' -f1 || true)
   echo "$scene,$t_end,$integrator,$optimizer,$mode,$value,$solver_tolerance,$steps,$failed,${rejected:-0}," \
        "$(printf '%.0f' "$(echo "${per_step:-0} * $steps" | bc)"),$(echo "$end - $start" | bc)," \
-       "$(error_of "$work/run.csv" "$work/ref_${scene}.csv")" | tr -d ' ' >> "$out"
+       "$(error_of "$work/run.csv" "$work/ref_${scene//\//_}.csv")" | tr -d ' ' >> "$out"
   rm -f "$work/run.csv"
 }
 for entry in $scenes; do
   scene=${entry%%:*}; t_end=${entry##*:}
   if [ "$scene" = oscillator ]; then  # the exact solution x = 1 + 0.1 cos t
     /usr/bin/python3 -c "import math; print('node,x,y'); print('0,0,0'); \
-print('1,%.17g,0' % (1 + 0.1 * math.cos($t_end)))" > "$work/ref_${scene}.csv"
+print('1,%.17g,0' % (1 + 0.1 * math.cos($t_end)))" > "$work/ref_${scene//\//_}.csv"
   else
     "$ipstep" --scene="$scene" --integrator=newmark --dt="$ref_dt" --t_end="$t_end" \
       --tolerance="$ref_tolerance" --num_threads=1 --progress=false --on_failure=continue \
-      --positions="$work/ref_${scene}.csv" > /dev/null 2>&1 || true
+      --positions="$work/ref_${scene//\//_}.csv" > /dev/null 2>&1 || true
+    # (a reference whose steps fail still has its positions; one that did not run has none)
+    [ -s "$work/ref_${scene//\//_}.csv" ] || { echo "adaptive_steps: no reference for $scene" >&2; exit 1; }
   fi
   for integrator in $integrators; do
    for optimizer in $optimizers; do
