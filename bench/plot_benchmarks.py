@@ -135,12 +135,8 @@ def tightest_runs(sub):
     return tight, groups
 
 
-def save(fig, out, name):
-    os.makedirs(out, exist_ok=True)
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    print(f"wrote {out}/{name}.png and .svg")
+# One way to write a figure (png and svg) for every plot.
+save = plot_accuracy.save
 
 
 def scene_name(r):
