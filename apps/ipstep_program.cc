@@ -28,6 +28,7 @@
 #include "io/frame_writer.h"
 #include "io/positions_writer.h"
 #include "io/stats_writer.h"
+#include "io/vtk_unstructured_grid.h"
 #include "problems/scene_loader.h"
 #include "problems/solid.h"
 #include "sim/run_trajectory.h"
@@ -44,8 +45,13 @@ DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
 DEFINE_string(frames, "",
-              "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body, "
-              "obstacles) at its simulated time; tools/animate.py DIR OUT.gif draws it");
+              "Directory for a ParaView time series: DIR/run.pvd with one .vtu per frame (body: "
+              "a 3D solid's tetrahedra with J, energy density, von Mises stress; obstacles; a 3D "
+              "solid's surface) at its simulated time; docs/paraview.md; tools/animate.py DIR "
+              "OUT.gif or tools/render_frames.py (ParaView) draws it");
+DEFINE_string(frames_format, "zlib",
+              "With --frames: zlib (binary, compressed: the smallest files), raw (binary) or "
+              "ascii (text, for diffs); docs/paraview.md");
 DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
 DEFINE_bool(progress, true,
             "Progress on stderr: a line for runs longer than 3 s and, when stderr is a terminal "
@@ -93,6 +99,12 @@ int Run(const EffectRegistry& registry) {
   options.max_substeps =
       CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps; 1 is no retry");
   CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
+  VtkEncoding frames_format;
+  if (!ParseVtkEncoding(FLAGS_frames_format, &frames_format)) {
+    throw InputError(
+        "flag", "--frames_format",
+        "must be 'zlib', 'raw' or 'ascii', got '" + ClipInput(FLAGS_frames_format) + "'");
+  }
   SetupProgress setup("ipstep", SetupDelay());
   setup.Begin("loading scene " + ClipInput(FLAGS_scene));
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
@@ -163,7 +175,7 @@ int Run(const EffectRegistry& registry) {
     sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });
   }
   if (!FLAGS_frames.empty()) {
-    frames = std::make_unique<FrameWriter>(FLAGS_frames, sim);
+    frames = std::make_unique<FrameWriter>(FLAGS_frames, sim, "frames", frames_format);
     frames->Write(0);
   }
 

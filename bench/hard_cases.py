@@ -53,6 +53,10 @@ CASES = [
     ("node_ceiling", "node_ceiling.json", [], BOTH),
     ("textbook_squash", "textbook_squash.json", ["--tolerance=1e-6"], BOTH),
     ("impact h=1e-3", "impact", ["--dt=1e-3", "--steps=300"], ("newmark",)),
+    ("paddle", "paddle.json", [], BOTH),
+    ("paddle_heavy", "paddle_heavy.json", [], BOTH),
+    ("tilting_floor", "tilting_floor.json", [], BOTH),
+    ("swing_3d", "swing_3d.json", [], BOTH),
 ]
 # Scenes that can run through with the default optimiser (newton): at most
 # 5 % failed steps (with every integrator, or the one named).
@@ -60,9 +64,9 @@ FEASIBLE = {"gap", "offset", "wedge", "squeeze_fast/backward_euler", "thrown_sta
             "mass_ratio", "chain_quasi_static", "drop k=1e2", "drop k=1e8", "drop h=1e-6",
             "drop h=0.1", "impact 60 m/s", "impact 300 m/s", "impact 1000 m/s",
             "impact 1000 m/s, d_hat 1e-4", "slope 2000 steps", "drop 2000 steps", "node_ceiling",
-            "textbook_squash"}
+            "textbook_squash", "paddle", "paddle_heavy/backward_euler", "tilting_floor", "swing_3d"}
 CI = {"gap", "offset", "thrown_stack", "drop h=0.1", "impact 300 m/s", "node_ceiling",
-      "textbook_squash"}
+      "textbook_squash", "paddle", "tilting_floor"}
 
 
 REJECT = os.path.join(HARD, "reject")

@@ -12,9 +12,18 @@
       (and tolerance, a column when there are several)
   plot_benchmarks.py scaling RESULTS.csv --out docs/img [--time min]
       scaling.{png,svg} and a markdown table with fitted exponents
-  plot_benchmarks.py adaptive ADAPTIVE.csv --out docs/img
-      adaptive_steps.{png,svg}  error vs wall time, fixed h against --adaptive,
-                                one panel per scene (bench/adaptive_steps.sh's CSV)
+  plot_benchmarks.py adaptive ADAPTIVE.csv... --out docs/img [--name adaptive_steps]
+                    [--tune SCENE,TARGET,TUNE.csv]... [--cost wall|iterations]
+      NAME.{png,svg}  error vs wall time, fixed h against --adaptive, one panel
+                      per scene (bench/adaptive_steps.sh's CSV files); --tune draws
+                      ipstep_tune's pick and the default for TARGET [m] on SCENE's panel;
+                      --cost iterations: solver iterations (machine-independent) on x
+  plot_benchmarks.py adaptive-table ADAPTIVE.csv...
+      markdown: each --adaptive run against the cheapest fixed h (same integrator x
+      optimiser, any solver tolerance) at most as far off, in iterations and wall time
+  plot_benchmarks.py tune TUNE.csv --target E --out docs/img --name NAME
+      NAME.{png,svg}  one ipstep_tune search (--tune_output): every run, the Pareto
+                      front, the target, the pick and the default (bench/plot_accuracy.py)
 
 --time: ms per step from the median of the timed runs (default) or from the
 fastest one (min: on a shared machine, the run least disturbed by others).
@@ -41,6 +50,9 @@ except ImportError:
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_accuracy  # noqa: E402
 
 # CSV files written before ipstep_bench marked such runs "diverged" have status
 # "ok" and a huge energy_drift (then |E - E0| / |E0|; now in the energy scales of
@@ -123,12 +135,8 @@ def tightest_runs(sub):
     return tight, groups
 
 
-def save(fig, out, name):
-    os.makedirs(out, exist_ok=True)
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    print(f"wrote {out}/{name}.png and .svg")
+# One way to write a figure (png and svg) for every plot.
+save = plot_accuracy.save
 
 
 def scene_name(r):
@@ -302,44 +310,39 @@ def scaling(rows, out):
     save(fig, out, "scaling")
 
 
-def adaptive(path, out):
-    """Work-precision of fixed against adaptive steps (bench/adaptive_steps.sh)."""
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    scenes = []
-    for r in rows:
-        if r["scene"] not in scenes:
-            scenes.append(r["scene"])
-    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 3.8), squeeze=False)
-    for ax, scene in zip(axes[0], scenes):
-        groups = defaultdict(list)
-        for r in rows:
-            error, seconds = number(r["position_error"]), number(r["wall_s"])
-            if r["scene"] == scene and error > 0 and seconds > 0 and r["failed"] == "0":
-                groups[(r["integrator"], r["mode"])].append((seconds, error))
-        for (integrator, mode), points in sorted(groups.items()):  # coarse to fine, as run
-            ax.loglog([p[0] for p in points], [p[1] for p in points],
-                      "o-" if mode == "fixed" else "s--", label=f"{integrator}, {mode}")
-        ax.set_title(scene)
-        ax.set_xlabel("wall time of the run [s]")
-        ax.set_ylabel("final position error [m]")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    save(fig, out, "adaptive_steps")
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("mode", choices=["work-precision", "table", "scaling", "adaptive"])
+    parser.add_argument("mode", choices=["work-precision", "table", "scaling", "adaptive",
+                                         "adaptive-table", "tune"])
     parser.add_argument("csv", nargs="+")
     parser.add_argument("--out", default="docs/img")
     parser.add_argument("--baseline", default="projected_newton")
     parser.add_argument("--time", choices=["median", "min"], default="median")
+    parser.add_argument("--name", help="adaptive, tune: the plot's file name (no extension)")
+    parser.add_argument("--tune", action="append", default=[], metavar="SCENE,TARGET,TUNE.csv",
+                        help="adaptive: ipstep_tune's answer for TARGET [m] on SCENE's panel")
+    parser.add_argument("--target", type=float, help="tune: the search's --target_error [m]")
+    parser.add_argument("--cost", choices=["wall", "iterations"], default="wall",
+                        help="adaptive: the x axis, wall time or solver iterations of a run")
     args = parser.parse_args()
     if args.mode == "adaptive":
-        for path in args.csv:
-            adaptive(path, args.out)
+        tunes = []
+        for spec in args.tune:
+            fields = spec.split(",")
+            if len(fields) != 3 or not plot_accuracy.number(fields[1]) > 0:
+                parser.error(f"--tune={spec}: give SCENE,TARGET,TUNE.csv with TARGET > 0")
+            tunes.append((fields[0], float(fields[1]), fields[2]))
+        plot_accuracy.adaptive(args.csv, args.out, args.name or "adaptive_steps", tunes,
+                               args.cost)
+        return
+    if args.mode == "adaptive-table":
+        plot_accuracy.adaptive_table(args.csv)
+        return
+    if args.mode == "tune":
+        if len(args.csv) != 1 or not args.name or not (args.target and args.target > 0):
+            parser.error("tune: give one TUNE.csv, --name and --target > 0")
+        plot_accuracy.tune(args.csv[0], args.out, args.name, args.target)
         return
     rows = [r for path in args.csv for r in read(path, args.time)]
     if not rows:

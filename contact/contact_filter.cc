@@ -322,7 +322,7 @@ void ContactFilter::BeginStep(const double* x_n) {
   // in the air falls onto an obstacle within one step), so every pair with an
   // obstacle is a candidate (terms out of reach are exactly zero).
   if (!(context_->inertia_weight > 0.0)) std::fill(reach.begin(), reach.end(), kInfinity);
-  const std::vector<double> travel = time_.Travel();
+  const std::vector<double> travel = time_.Travel(RotationRadii(x_n, x_tilde.data(), max_reach));
   ExtendPairs(CandidateRegion{x_n, x_tilde.data(), &reach, max_reach, &travel});
 
   LagFriction(x_n, t_n);
@@ -339,6 +339,23 @@ void ContactFilter::BeginStep(const double* x_n) {
       before_ok && BarrierEnergy(x_n, t_n, &energy_after) ? energy_after - energy_before : 0.0;
 }
 
+std::vector<double> ContactFilter::RotationRadii(const double* a, const double* b,
+                                                 double reach) const {
+  std::vector<double> radius(options_.obstacles.size(), 0.0);
+  for (size_t o = 0; o < options_.obstacles.size(); ++o) {
+    const Obstacle& obstacle = *options_.obstacles[o];
+    if (!obstacle.rotates()) continue;
+    const Eigen::Vector3d center = obstacle.RotationCenterAt(time_.tau());
+    double farthest = 0.0;
+    for (const int node : mesh_.nodes) {
+      farthest = std::max({farthest, (ToPoint(a + dim_ * node, dim_) - center).norm(),
+                           (ToPoint(b + dim_ * node, dim_) - center).norm()});
+    }
+    radius[o] = farthest + reach;
+  }
+  return radius;
+}
+
 bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
   double* tau = time_.pointer();
   const double saved_tau = *tau;
@@ -350,10 +367,18 @@ bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
 }
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {
-  return begin_energy_input_ + time_.Work(x_start, x_end, static_cast<int>(accepted_.size()),
-                                          [this](const double* x, double t, double* energy) {
-                                            return BarrierEnergy(x, t, energy);
-                                          });
+  // Friction against moving obstacles: the force F = -dR/dv = -(1/slope)
+  // dR/dx at the step's end (its implicit value) does the work h F . u.
+  double friction_work = 0.0, rate = 0.0;
+  if (friction_enabled_ && context_->velocity_slope > 0.0 &&
+      potential_->FrameDissipationRate(x_end, &rate)) {
+    friction_work = -context_->time_step / context_->velocity_slope * rate;
+  }
+  return begin_energy_input_ + friction_work +
+         time_.Work(x_start, x_end, static_cast<int>(accepted_.size()),
+                    [this](const double* x, double t, double* energy) {
+                      return BarrierEnergy(x, t, energy);
+                    });
 }
 
 bool ContactFilter::RefreshTerms(const double* x) {
@@ -374,7 +399,8 @@ bool ContactFilter::RefreshTerms(const double* x) {
   }
   if (missing || changed) {
     const std::vector<double> reach(mesh_.nodes.size(), options_.d_hat + 2.0 * moved);
-    const std::vector<double> travel = time_.Travel();
+    const std::vector<double> travel =
+        time_.Travel(RotationRadii(x, x, options_.d_hat + 2.0 * moved));
     if (ExtendPairs(CandidateRegion{x, x, &reach, options_.d_hat + 2.0 * moved, &travel})) {
       RebuildBarrierTerms();
       changed = true;

@@ -143,6 +143,10 @@ class ContactFilter : public StepFilter {
   // Smallest TimeOfImpact of the kinds (PairSet::kNoImpact if none).
   double Sweep(const double* a, const double* b, double t_a, double t_b) const;
   bool ExtendPairs(const CandidateRegion& region);
+  // Per obstacle: for a rotating one, the largest distance of a contact node
+  // at a or b from its centre, plus reach (how far the nodes may still go);
+  // 0 for the others (ObstacleTime::Travel).
+  std::vector<double> RotationRadii(const double* a, const double* b, double reach) const;
   void RebuildBarrierTerms();
   double Lag(const double* x);
   // The coefficients of every pair kind, and whether any is > 0.

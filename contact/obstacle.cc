@@ -20,6 +20,57 @@ Obstacle::Obstacle(int dimension, const Eigen::Vector3d& velocity, std::string n
   motion_.velocity = velocity;
 }
 
+double Obstacle::RotatedDistance(const Eigen::Vector3d& x, double t,
+                                 Eigen::Vector3d* gradient) const {
+  const double d = RestDistance(ToRest(x, t), gradient);
+  if (gradient) *gradient = motion_.Rotation(t) * *gradient;  // d/dx = R d/dy
+  return d;
+}
+
+bool Obstacle::DistanceHessian(const Eigen::Vector3d& x, double t, Eigen::Matrix3d* hessian) const {
+  if (!rotates()) return RestDistanceHessian(x - Shift(t), hessian);
+  if (!RestDistanceHessian(ToRest(x, t), hessian)) return false;
+  const Eigen::Matrix3d r = motion_.Rotation(t);
+  *hessian = r * *hessian * r.transpose();
+  return true;
+}
+
+double Obstacle::RestPathBound(const Eigen::Vector3d* x0, const Eigen::Vector3d* x1, int n,
+                               double t0, double t1) const {
+  double bound = 0.0;
+  if (!rotates()) {
+    const Eigen::Vector3d shift0 = Shift(t0), shift1 = Shift(t1);
+    for (int k = 0; k < n; ++k)
+      bound = std::max(bound, ((x1[k] - shift1) - (x0[k] - shift0)).norm());
+    return bound;
+  }
+  // The rate of tau per unit s: |t1 - t0| while the obstacle moves in part of
+  // the interval (all of it unless until() lies inside), 0 once it stopped.
+  const double rate = until() <= std::min(t0, t1) ? 0.0 : std::abs(t1 - t0);
+  const Eigen::Vector3d o0 = motion_.Center(t0), o1 = motion_.Center(t1);
+  double radius = 0.0;
+  for (int k = 0; k < n; ++k) {
+    bound = std::max(bound, (x1[k] - x0[k]).norm());
+    radius = std::max({radius, (x0[k] - o0).norm(), (x1[k] - o1).norm()});
+  }
+  return bound + rate * (velocity().norm() + angular_velocity().norm() * radius);
+}
+
+double Obstacle::DistanceChangeBound(double t0, double t1, double radius) const {
+  if (!rotates()) return (Shift(t1) - Shift(t0)).norm();
+  const double dtau = std::abs(std::min(t1, until()) - std::min(t0, until()));
+  const double shift = velocity().norm() * dtau;
+  return shift + angular_velocity().norm() * dtau * (radius + shift);
+}
+
+double Obstacle::RotatedTimeOfImpact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_a,
+                                     double t_b, double margin) const {
+  auto gap = [&](double s) {
+    return RestDistance(ToRest(a + s * (b - a), t_a + s * (t_b - t_a)), nullptr);
+  };
+  return Advance(gap, RestPathBound(&a, &b, 1, t_a, t_b), margin);
+}
+
 double PointSegmentDistance(const Eigen::Vector3d& c, const Eigen::Vector3d& a,
                             const Eigen::Vector3d& b, double* alpha) {
   const double s = ClosestSegmentParameter(c, a, b);
@@ -130,12 +181,23 @@ std::array<double, 3> DotPoly(const Eigen::Vector3d& u0, const Eigen::Vector3d& 
 double Obstacle::EdgeTimeOfImpact(int feature, const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
                                   const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, double t0,
                                   double t1, double margin) const {
+  const double r = FeatureRadius();
+  if (CurvedPath(t0, t1)) {
+    // The rest-frame paths are curved: conservative advancement.
+    const Eigen::Vector3d c = RestFeature(feature);
+    const Eigen::Vector3d x0[2] = {a0, b0}, x1[2] = {a1, b1};
+    auto gap = [&](double s) {
+      const double t = t0 + s * (t1 - t0);
+      return PointSegmentDistance(c, ToRest(a0 + s * (a1 - a0), t), ToRest(b0 + s * (b1 - b0), t)) -
+             r;
+    };
+    return Advance(gap, RestPathBound(x0, x1, 2, t0, t1), margin);
+  }
   // In the obstacle's frame: the feature c is fixed, the end points move
   // linearly: q(s) = c - a(s) = q0 + s q1, e(s) = b(s) - a(s) = e0 + s e1.
-  const Eigen::Vector3d c = EdgeFeature(feature, 0.0);
-  const double r = FeatureRadius();
-  const Eigen::Vector3d ya = a0 - Shift(t0), da = (a1 - Shift(t1)) - ya;
-  const Eigen::Vector3d yb = b0 - Shift(t0), db = (b1 - Shift(t1)) - yb;
+  const Eigen::Vector3d c = RestFeature(feature);
+  const Eigen::Vector3d ya = ToRest(a0, t0), da = ToRest(a1, t1) - ya;
+  const Eigen::Vector3d yb = ToRest(b0, t0), db = ToRest(b1, t1) - yb;
   auto gap = [&](double s) { return PointSegmentDistance(c, ya + s * da, yb + s * db) - r; };
   const double d0 = gap(0.0);
   if (!(d0 > margin)) return 0.0;

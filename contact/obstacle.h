@@ -1,22 +1,27 @@
 // Rigid obstacles for contact: the interface every shape implements
 // (contact/obstacles/: plane, sphere / circle, axis-aligned box), in 2D or 3D,
-// static or translating with a constant velocity until an optional stop time:
-// the obstacle at time t is its shape at rest shifted by velocity * min(t,
-// until), the motion law of moving nodes (core/prescribed_motion.h) without
-// rotation.
+// static or moving by the motion law of moving nodes (core/prescribed_motion.h):
+// a translation with a constant velocity plus a rotation with a constant
+// angular velocity about a centre that moves with it, until an optional stop
+// time. The obstacle at time t is its shape at rest carried by that rigid
+// motion, x = c + v tau + R(omega tau) (y - c), tau = min(t, until).
 //
-// The translation is handled here, once: every query at time t maps its
-// points into the obstacle's frame at rest (y = x - velocity t) or its rest
-// features out of it (+ velocity t), and the shapes only answer at rest
-// (the protected Rest* methods). Continuous collision detection works in that
-// frame: a point moving linearly while the obstacle translates linearly moves
-// linearly relative to it. The shift is linear in time on either side of the
-// stop time, so a time interval [t_a, t_b] passed to the impact queries must
-// not contain it in its interior (contact/obstacle_time.h splits there).
+// The motion is handled here, once: every query at time t maps its points into
+// the obstacle's frame at rest (ToRest) or its rest features out of it
+// (ToWorld), and the shapes only answer at rest (the protected Rest* methods).
+// Continuous collision detection works in that frame. Without rotation a point
+// moving linearly while the obstacle translates linearly moves linearly
+// relative to it, and the closed forms of the shapes apply; with rotation the
+// relative path is curved, and every time of impact is found by conservative
+// advancement (contact/conservative_advancement.h) with the bound of
+// RestPathBound. The motion is smooth on either side of the stop time, so a
+// time interval [t_a, t_b] passed to the impact queries must not contain it in
+// its interior (contact/obstacle_time.h splits there).
 //
 // Distances are signed (negative inside the obstacle).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +29,7 @@
 
 #include <Eigen/Core>
 
+#include "contact/conservative_advancement.h"
 #include "core/prescribed_motion.h"
 
 namespace ipstep {
@@ -44,6 +50,16 @@ class Obstacle {
   int dimension() const { return dimension_; }
   // The velocity while it moves (before until()).
   const Eigen::Vector3d& velocity() const { return motion_.velocity; }
+  // The angular velocity [rad/s] (2D: about z) and the centre it turns about
+  // (at time 0; it moves with the velocity).
+  const Eigen::Vector3d& angular_velocity() const { return motion_.angular_velocity; }
+  const Eigen::Vector3d& rotation_center() const { return motion_.center; }
+  bool rotates() const { return !motion_.angular_velocity.isZero(0.0); }
+  // Sets the rotation, before the obstacle is shared.
+  void set_rotation(const Eigen::Vector3d& angular_velocity, const Eigen::Vector3d& center) {
+    motion_.angular_velocity = angular_velocity;
+    motion_.center = center;
+  }
   // The time it stops at [s] (infinity: never).
   double until() const { return motion_.until; }
   // Sets the stop time (> 0), before the obstacle is shared.
@@ -53,22 +69,44 @@ class Obstacle {
   const std::optional<double>& friction_mu() const { return friction_mu_; }
   void set_friction_mu(double mu) { friction_mu_ = mu; }
   bool is_moving() const { return !motion_.is_still(); }
-  // The velocity at time t: velocity() before until(), zero from then on.
-  Eigen::Vector3d VelocityAt(double t) const {
-    return motion_.Velocity(Eigen::Vector3d::Zero(), t);
+  // The velocity at time t of the obstacle's material point at x: v + omega x
+  // (x - c - v tau) before until(), zero from then on.
+  Eigen::Vector3d VelocityAt(const Eigen::Vector3d& x, double t) const {
+    return motion_.Velocity(ToRest(x, t), t);
   }
-  // The obstacle's displacement at time t: velocity * min(t, until).
-  Eigen::Vector3d Shift(double t) const { return motion_.Position(Eigen::Vector3d::Zero(), t); }
+  // The point y of the shape at rest that is at x at time t, and back. Without
+  // rotation a shift by velocity * min(t, until).
+  Eigen::Vector3d ToRest(const Eigen::Vector3d& x, double t) const {
+    return rotates() ? motion_.InitialPosition(x, t) : Eigen::Vector3d(x - Shift(t));
+  }
+  Eigen::Vector3d ToWorld(const Eigen::Vector3d& y, double t) const {
+    return rotates() ? motion_.Position(y, t) : Eigen::Vector3d(y + Shift(t));
+  }
+  // A bound, per unit of the path fraction s, on how fast the rest-frame
+  // images ToRest(x_k(s), t(s)) of n points moving linearly from x0[k] (at
+  // obstacle time t0) to x1[k] (t1) move, and so every point of their convex
+  // hull: max_k |x1 - x0| + |dtau| (|v| + |omega| max_k max(|x0 - o(t0)|,
+  // |x1 - o(t1)|)), o(t) the moving centre (the distance to it is convex
+  // along the path, largest at an end). Without rotation the exact
+  // max_k |(x1 - x0) - v dtau| of the linear relative paths.
+  double RestPathBound(const Eigen::Vector3d* x0, const Eigen::Vector3d* x1, int n, double t0,
+                       double t1) const;
+  // How much the distance of any point within `radius` of the centre can
+  // change from time t0 to t1 (a bound: the rest-frame image of a fixed
+  // point moves by at most that much): |v dtau| + |omega dtau| (radius +
+  // |v dtau|).
+  double DistanceChangeBound(double t0, double t1, double radius) const;
+  // The moving centre o(t) = c + v tau.
+  Eigen::Vector3d RotationCenterAt(double t) const { return motion_.Center(t); }
 
   // Signed distance of point x (dimension components used) at time t; the unit
   // gradient with respect to x when `gradient` is not null.
   double Distance(const Eigen::Vector3d& x, double t, Eigen::Vector3d* gradient = nullptr) const {
+    if (rotates()) return RotatedDistance(x, t, gradient);
     return RestDistance(x - Shift(t), gradient);
   }
   // Its Hessian with respect to x (false where it is not defined).
-  bool DistanceHessian(const Eigen::Vector3d& x, double t, Eigen::Matrix3d* hessian) const {
-    return RestDistanceHessian(x - Shift(t), hessian);
-  }
+  bool DistanceHessian(const Eigen::Vector3d& x, double t, Eigen::Matrix3d* hessian) const;
   // True when Distance is affine in x (a plane): its Gauss-Newton model is exact.
   virtual bool distance_is_affine() const { return false; }
 
@@ -76,9 +114,20 @@ class Obstacle {
   // obstacle time t_a) to b (at obstacle time t_b) comes within `margin` of the
   // obstacle, i.e. enters the obstacle grown by margin (boxes are grown as boxes,
   // slightly conservative at corners). 0 if it starts there; kNoImpact if never.
+  // An obstacle rotating between t_a and t_b answers by conservative
+  // advancement (the first fraction not proved to keep the gap above
+  // max(margin, kEdgeGapFraction d(0)): earlier than the exact one, never
+  // later); at one time (t_a = t_b) the relative path is linear and the
+  // answer exact.
   double TimeOfImpact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_a, double t_b,
                       double margin) const {
-    return RestTimeOfImpact(a - Shift(t_a), b - Shift(t_b), margin);
+    if (CurvedPath(t_a, t_b)) return RotatedTimeOfImpact(a, b, t_a, t_b, margin);
+    return RestTimeOfImpact(ToRest(a, t_a), ToRest(b, t_b), margin);
+  }
+  // Whether the rest-frame path of a linear motion from obstacle time t_a to
+  // t_b is curved: the obstacle rotates in between.
+  bool CurvedPath(double t_a, double t_b) const {
+    return rotates() && std::min(t_a, until()) != std::min(t_b, until());
   }
 
   static constexpr double kNoImpact = 2.0;
@@ -95,7 +144,7 @@ class Obstacle {
   virtual int NumEdgeFeatures() const { return 0; }
   // World position of a feature at time t.
   Eigen::Vector3d EdgeFeature(int feature, double t) const {
-    return RestFeature(feature) + Shift(t);
+    return ToWorld(RestFeature(feature), t);
   }
   // d = |c - closest point of [a, b]| - R for feature c at time t (negative:
   // the segment is inside the sphere); gradients with respect to a and b when
@@ -142,7 +191,7 @@ class Obstacle {
   virtual int NumFaceFeatures() const { return 0; }
   // World position of a face feature at time t.
   Eigen::Vector3d FaceFeature(int feature, double t) const {
-    return RestFeature(feature) + Shift(t);
+    return ToWorld(RestFeature(feature), t);
   }
   // R of the features (edge and face): the sphere's radius, 0 for box corners.
   virtual double FeatureRadius() const { return 0.0; }
@@ -211,9 +260,23 @@ class Obstacle {
     q->setZero();
   }
 
+  // Conservative advancement with the obstacle's constants.
+  template <class Gap>
+  static double Advance(const Gap& gap, double bound, double margin) {
+    return ConservativeAdvancement(gap, bound, margin, kEdgeGapFraction, kMaxAdvancements,
+                                   kNoImpact);
+  }
+  // The translation at time t, velocity * min(t, until) (what maps the rest
+  // frame to the world without rotation).
+  Eigen::Vector3d Shift(double t) const { return motion_.Position(Eigen::Vector3d::Zero(), t); }
+
  private:
+  double RotatedDistance(const Eigen::Vector3d& x, double t, Eigen::Vector3d* gradient) const;
+  double RotatedTimeOfImpact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t_a,
+                             double t_b, double margin) const;
+
   int dimension_;
-  PrescribedMotion motion_;  // translation only: velocity and until
+  PrescribedMotion motion_;
   std::optional<double> friction_mu_;
   std::string name_;
 };

@@ -5,39 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/conservative_advancement.h"
 #include "contact/obstacle.h"
 #include "contact/point_triangle.h"
 #include "contact/segment_segment.h"
 
 namespace ipstep {
-
-namespace {
-
-// Conservative advancement (see Obstacle::FaceTimeOfImpact): gap(s) is the
-// distance of a primitive whose points move by at most `bound` over the path
-// s in [0, 1], relative to the feature.
-template <class Gap>
-double ConservativeAdvancement(const Gap& gap, double bound, double margin) {
-  const double d0 = gap(0.0);
-  if (!(d0 > margin)) return 0.0;
-  const double goal = std::max(margin, Obstacle::kEdgeGapFraction * d0);
-  if (!(bound > 0.0) || d0 - bound > goal) return Obstacle::kNoImpact;
-  // Stop once the gap is this close to the goal: the remaining advances would
-  // shrink geometrically while the primitive approaches at less than `bound`.
-  const double close = goal + 1e-2 * (d0 - goal);
-  double s = 0.0, d = d0;
-  for (int advance = 0; advance < Obstacle::kMaxAdvancements; ++advance) {
-    // From s to s' every point moves by at most bound (s' - s), so the gap
-    // stays >= d - bound (s' - s) >= goal.
-    s += (d - goal) / bound;
-    if (s >= 1.0) return Obstacle::kNoImpact;
-    d = gap(s);
-    if (d <= close) return s;
-  }
-  return s;
-}
-
-}  // namespace
 
 double Obstacle::FaceDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector3d& c, double t, Eigen::Vector3d* grad,
@@ -66,28 +39,39 @@ double Obstacle::FacePointDistance(int feature, const Eigen::Vector3d& a, const 
 
 double Obstacle::FaceTimeOfImpact(int feature, const Eigen::Vector3d* v0, const Eigen::Vector3d* v1,
                                   double t0, double t1, double margin) const {
+  const double r = FeatureRadius();
+  if (CurvedPath(t0, t1)) {
+    // The rest-frame paths are curved; the bound covers them.
+    const Eigen::Vector3d c = RestFeature(feature);
+    auto gap = [&](double s) {
+      const double t = t0 + s * (t1 - t0);
+      Eigen::Vector3d y[3];
+      for (int k = 0; k < 3; ++k) y[k] = ToRest(v0[k] + s * (v1[k] - v0[k]), t);
+      return PointTriangleDistance(c, y[0], y[1], y[2]).distance - r;
+    };
+    return Advance(gap, RestPathBound(v0, v1, 3, t0, t1), margin);
+  }
   // In the obstacle's frame the feature is fixed and the vertices move
   // linearly: y_i(s) = y_i0 + s dy_i.
-  const Eigen::Vector3d c = FaceFeature(feature, 0.0);
-  const double r = FeatureRadius();
+  const Eigen::Vector3d c = RestFeature(feature);
   Eigen::Vector3d y[3], dy[3];
   double bound = 0.0;
   for (int k = 0; k < 3; ++k) {
-    y[k] = v0[k] - Shift(t0);
-    dy[k] = (v1[k] - Shift(t1)) - y[k];
+    y[k] = ToRest(v0[k], t0);
+    dy[k] = ToRest(v1[k], t1) - y[k];
     bound = std::max(bound, dy[k].norm());
   }
   auto gap = [&](double s) {
     return PointTriangleDistance(c, y[0] + s * dy[0], y[1] + s * dy[1], y[2] + s * dy[2]).distance -
            r;
   };
-  return ConservativeAdvancement(gap, bound, margin);
+  return Advance(gap, bound, margin);
 }
 
 void Obstacle::BoxEdge(int edge, double t, Eigen::Vector3d* p, Eigen::Vector3d* q) const {
   RestBoxEdge(edge, p, q);
-  *p += Shift(t);
-  *q += Shift(t);
+  *p = ToWorld(*p, t);
+  *q = ToWorld(*q, t);
 }
 
 double Obstacle::BoxEdgeDistance(int edge, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -106,13 +90,23 @@ double Obstacle::BoxEdgeTimeOfImpact(int edge, const Eigen::Vector3d& a0, const 
                                      const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
                                      double t0, double t1, double margin) const {
   Eigen::Vector3d p, q;
-  BoxEdge(edge, 0.0, &p, &q);
-  const Eigen::Vector3d ya = a0 - Shift(t0), da = (a1 - Shift(t1)) - ya;
-  const Eigen::Vector3d yb = b0 - Shift(t0), db = (b1 - Shift(t1)) - yb;
+  RestBoxEdge(edge, &p, &q);
+  if (CurvedPath(t0, t1)) {
+    const Eigen::Vector3d x0[2] = {a0, b0}, x1[2] = {a1, b1};
+    auto gap = [&](double s) {
+      const double t = t0 + s * (t1 - t0);
+      return SegmentSegmentDistance(ToRest(a0 + s * (a1 - a0), t), ToRest(b0 + s * (b1 - b0), t), p,
+                                    q)
+          .distance;
+    };
+    return Advance(gap, RestPathBound(x0, x1, 2, t0, t1), margin);
+  }
+  const Eigen::Vector3d ya = ToRest(a0, t0), da = ToRest(a1, t1) - ya;
+  const Eigen::Vector3d yb = ToRest(b0, t0), db = ToRest(b1, t1) - yb;
   auto gap = [&](double s) {
     return SegmentSegmentDistance(ya + s * da, yb + s * db, p, q).distance;
   };
-  return ConservativeAdvancement(gap, std::max(da.norm(), db.norm()), margin);
+  return Advance(gap, std::max(da.norm(), db.norm()), margin);
 }
 
 }  // namespace ipstep

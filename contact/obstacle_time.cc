@@ -30,8 +30,8 @@ void ObstacleTime::Advance(const std::function<double(double, double)>& first_im
     tau_ = t_next_;
     return;
   }
-  // Piece by piece between the obstacles' stop times, where every shift is
-  // linear in time (contact/obstacle.h).
+  // Piece by piece between the obstacles' stop times, where every motion is
+  // smooth (contact/obstacle.h).
   while (tau_ < t_next_) {
     const double end = NextStop(tau_);
     const double first = first_impact(tau_, end);
@@ -44,11 +44,12 @@ void ObstacleTime::Advance(const std::function<double(double, double)>& first_im
   }
 }
 
-std::vector<double> ObstacleTime::Travel() const {
+std::vector<double> ObstacleTime::Travel(const std::vector<double>& radius) const {
   std::vector<double> travel;
-  for (const ObstaclePtr& o_ptr : *obstacles_) {
-    const Obstacle& o = *o_ptr;
-    travel.push_back(tau_ < t_next_ ? (o.Shift(t_next_) - o.Shift(tau_)).norm() : 0.0);
+  for (size_t k = 0; k < obstacles_->size(); ++k) {
+    const Obstacle& o = *(*obstacles_)[k];
+    const double r = k < radius.size() ? radius[k] : 0.0;
+    travel.push_back(tau_ < t_next_ ? o.DistanceChangeBound(tau_, t_next_, r) : 0.0);
   }
   return travel;
 }

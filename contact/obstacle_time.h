@@ -3,8 +3,8 @@
 // and Advance moves tau towards t_{n+1} as far as continuous collision
 // detection against the current solution allows (0.8 of the way to the first
 // impact), piece by piece between the obstacles' stop times (their "until":
-// within a piece every obstacle's shift is linear in time, as continuous
-// collision detection needs). The step is feasible only once tau = t_{n+1}.
+// within a piece every obstacle's motion is smooth, as continuous collision
+// detection needs). The step is feasible only once tau = t_{n+1}.
 // Also the moving
 // obstacles' work on the body over a step (Work).
 #pragma once
@@ -37,8 +37,12 @@ class ObstacleTime {
   double t_n() const { return t_n_; }
   double t_next() const { return t_next_; }
   bool has_moving_obstacles() const { return has_moving_; }
-  // Per obstacle: how far it still travels in the step [m].
-  std::vector<double> Travel() const;
+  // Per obstacle: how much it can still change the distance of a point in the
+  // step [m] (Obstacle::DistanceChangeBound): its travel without rotation; a
+  // rotating obstacle's also depends on radius[o], the largest distance of
+  // the points that matter from its centre (zero for the others; an empty
+  // vector: all zero).
+  std::vector<double> Travel(const std::vector<double>& radius = {}) const;
 
   // The moving obstacles' work on the body over the step: the integral of
   // dU_b/dt (the barrier energy's rate at fixed positions, central differences

@@ -56,6 +56,7 @@ int AddPrimitiveObstacleFrictionTerms(const std::vector<PrimitiveObstacleFrictio
     term.family = family;
     term.impulsive = true;
     term.nodes.assign(lag.nodes.begin(), lag.nodes.begin() + lag.num_nodes);
+    term.frame_velocity = lag.obstacle_velocity;
     term.cost = std::make_unique<PrimitiveObstacleFriction>(step, lag, friction.epsilon_v);
     term.loss = std::make_unique<FrictionLoss>(mu * lag.normal_force);
     potential->AddTerm(std::move(term));

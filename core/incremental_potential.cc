@@ -224,6 +224,25 @@ bool IncrementalPotential::EvaluateUnweighted(const TermFilter& filter, const do
   return Accumulate(filter, /*weighted=*/false, x, energy, gradient);
 }
 
+bool IncrementalPotential::FrameDissipationRate(const double* x, double* rate) const {
+  *rate = 0.0;
+  const auto moving = [](const Term& term) { return !term.frame_velocity.isZero(0.0); };
+  if (std::none_of(terms_.begin(), terms_.end(), moving)) return true;
+  std::vector<double> gradient(static_cast<size_t>(dimension_) * num_nodes_);
+  double energy = 0.0;
+  if (!Accumulate(moving, /*weighted=*/false, x, &energy, gradient.data())) return false;
+  // Per term: its own gradient (left by Accumulate) against its own u.
+  for (size_t t = 0; t < terms_.size(); ++t) {
+    if (term_ok_[t] != 1) continue;
+    const Term& term = terms_[t];
+    const double* g = term_gradient_.data() + gradient_offset_[t];
+    for (size_t b = 0; b < term.nodes.size(); ++b) {
+      for (int k = 0; k < dimension_; ++k) *rate += g[b * dimension_ + k] * term.frame_velocity[k];
+    }
+  }
+  return std::isfinite(*rate);
+}
+
 bool IncrementalPotential::EvaluateTerm(int t, double weight, const double* x, bool gradient,
                                         Scratch* scratch) const {
   const Term& term = terms_[t];

@@ -69,6 +69,9 @@ class IncrementalPotential {
   bool Evaluate(const double* x, double* energy, double* gradient) const;
 
   // Sum of UNWEIGHTED energies (and gradient) of the terms passing `filter`.
+  // For the terms with a frame velocity u (core/term.h): the sum over them of
+  // dR/dx_k . u at x, unweighted (false if one cannot be evaluated).
+  bool FrameDissipationRate(const double* x, double* rate) const;
   bool EvaluateUnweighted(const TermFilter& filter, const double* x, double* energy,
                           double* gradient) const;
 

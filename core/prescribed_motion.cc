@@ -16,6 +16,21 @@ Eigen::Vector3d Rotate(const Eigen::Vector3d& omega, double tau, const Eigen::Ve
 
 }  // namespace
 
+Eigen::Matrix3d PrescribedMotion::Rotation(double t) const {
+  const double rate = angular_velocity.norm();
+  if (rate == 0.0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(rate * std::min(t, until), angular_velocity / rate).toRotationMatrix();
+}
+
+Eigen::Vector3d PrescribedMotion::InitialPosition(const Eigen::Vector3d& x, double t) const {
+  const double tau = std::min(t, until);
+  return center + Rotate(angular_velocity, -tau, x - center - tau * velocity);
+}
+
+Eigen::Vector3d PrescribedMotion::Center(double t) const {
+  return center + std::min(t, until) * velocity;
+}
+
 Eigen::Vector3d PrescribedMotion::Position(const Eigen::Vector3d& x0, double t) const {
   const double tau = std::min(t, until);
   return center + tau * velocity + Rotate(angular_velocity, tau, x0 - center);

@@ -33,6 +33,13 @@ struct PrescribedMotion {
   // x(t) and ẋ(t) for the initial position x0 (3 components; z = 0 in 2D).
   Eigen::Vector3d Position(const Eigen::Vector3d& x0, double t) const;
   Eigen::Vector3d Velocity(const Eigen::Vector3d& x0, double t) const;
+  // R(ω τ) (the identity without rotation).
+  Eigen::Matrix3d Rotation(double t) const;
+  // The inverse of Position: the initial position x0 whose position at time t
+  // is x, x0 = c + R(ω τ)ᵀ (x − c − v τ).
+  Eigen::Vector3d InitialPosition(const Eigen::Vector3d& x, double t) const;
+  // The centre's position at time t, c + v τ (the rotation is about it).
+  Eigen::Vector3d Center(double t) const;
 };
 
 }  // namespace ipstep

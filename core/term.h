@@ -19,6 +19,7 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
+#include <Eigen/Core>
 
 #include "core/step_context.h"
 
@@ -63,6 +64,12 @@ struct Term {
   // history (Newmark) apply these forces as an impulse over the step instead
   // (Integrator::UpdateWithImpulses).
   bool impulsive = false;
+  // A dissipation measured relative to a moving surface (friction against a
+  // moving obstacle): that surface's velocity u (zero: at rest). The force
+  // F = -dR/dv such a term applies does the work h F . u of the surface's
+  // motion over a step (IncrementalPotential::FrameDissipationRate; the
+  // energy balance counts it, sim/energy_balance.h).
+  Eigen::Vector3d frame_velocity = Eigen::Vector3d::Zero();
   // Optional: the same residual evaluated in extended precision (long double),
   // set for autodiff terms. Line searches compare energies whose differences near
   // convergence are far below double round-off of the energies themselves.

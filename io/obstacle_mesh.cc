@@ -82,8 +82,8 @@ void AddSphere(const SphereObstacle& o, const Eigen::Vector3d& c, VtkMesh* mesh)
   }
 }
 
-void AddBox(const BoxObstacle& o, const Eigen::Vector3d& shift, VtkMesh* mesh) {
-  const Eigen::Vector3d lo = o.lower() + shift, hi = o.upper() + shift;
+void AddBox(const BoxObstacle& o, VtkMesh* mesh) {
+  const Eigen::Vector3d lo = o.lower(), hi = o.upper();
   if (o.dimension() == 2) {
     mesh->AddCell(VtkCell::kPolygon,
                   {AddPoint(mesh, {lo[0], lo[1], 0}), AddPoint(mesh, {hi[0], lo[1], 0}),
@@ -104,20 +104,36 @@ void AddBox(const BoxObstacle& o, const Eigen::Vector3d& shift, VtkMesh* mesh) {
   }
 }
 
-// Each shape drawn at time t.
+// Each shape drawn at rest (a plane around the rest-frame image of the
+// drawing's centre), its points then carried to time t by the obstacle's
+// motion (Obstacle::ToWorld: translation and rotation).
 class ShapeDrawer : public ObstacleVisitor {
  public:
   ShapeDrawer(double t, const Eigen::Vector3d& centre, double extent, VtkMesh* mesh)
       : t_(t), centre_(centre), extent_(extent), mesh_(mesh) {}
   void Visit(const PlaneObstacle& plane) override {
-    AddPlane(plane, plane.point() + plane.Shift(t_), centre_, extent_, mesh_);
+    const size_t first = mesh_->points.size();
+    AddPlane(plane, plane.point(), plane.ToRest(centre_, t_), extent_, mesh_);
+    ToWorld(plane, first);
   }
   void Visit(const SphereObstacle& sphere) override {
-    AddSphere(sphere, sphere.center() + sphere.Shift(t_), mesh_);
+    const size_t first = mesh_->points.size();
+    AddSphere(sphere, sphere.center(), mesh_);
+    ToWorld(sphere, first);
   }
-  void Visit(const BoxObstacle& box) override { AddBox(box, box.Shift(t_), mesh_); }
+  void Visit(const BoxObstacle& box) override {
+    const size_t first = mesh_->points.size();
+    AddBox(box, mesh_);
+    ToWorld(box, first);
+  }
 
  private:
+  void ToWorld(const Obstacle& obstacle, size_t first) {
+    for (size_t k = first; k < mesh_->points.size(); ++k) {
+      mesh_->points[k] = obstacle.ToWorld(mesh_->points[k], t_);
+    }
+  }
+
   double t_;
   Eigen::Vector3d centre_;
   double extent_;

@@ -1,12 +1,38 @@
 #include "io/vtk_unstructured_grid.h"
 
+#include <zlib.h>
+
+#include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <iomanip>
-#include <limits>
+#include <cstring>
+#include <type_traits>
 
 #include "io/output_file.h"
 
 namespace ipstep {
+
+const char* VtkEncodingName(VtkEncoding encoding) {
+  switch (encoding) {
+    case VtkEncoding::kAscii:
+      return "ascii";
+    case VtkEncoding::kRaw:
+      return "raw";
+    case VtkEncoding::kZlib:
+      return "zlib";
+  }
+  return "?";
+}
+
+bool ParseVtkEncoding(const std::string& name, VtkEncoding* encoding) {
+  for (VtkEncoding e : {VtkEncoding::kAscii, VtkEncoding::kRaw, VtkEncoding::kZlib}) {
+    if (name == VtkEncodingName(e)) {
+      *encoding = e;
+      return true;
+    }
+  }
+  return false;
+}
 
 void VtkMesh::AddCell(VtkCell type, std::vector<int> cell_points) {
   cells.push_back(std::move(cell_points));
@@ -15,57 +41,174 @@ void VtkMesh::AddCell(VtkCell type, std::vector<int> cell_points) {
 
 namespace {
 
-// A non-finite number would make the file unreadable: written as 0 (a diverged
-// state is visible in the run's CSV and status, not in its picture).
+static_assert(sizeof(double) == 8 && sizeof(std::int32_t) == 4);
+
 double Finite(double value) { return std::isfinite(value) ? value : 0.0; }
 
-void WriteVectors(std::ostream& out, const std::vector<Eigen::Vector3d>& vectors) {
-  for (const Eigen::Vector3d& v : vectors) {
-    out << Finite(v[0]) << ' ' << Finite(v[1]) << ' ' << Finite(v[2]) << '\n';
+bool LittleEndian() {
+  const std::uint16_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  return first == 1;
+}
+
+// The bytes of `values`, little-endian.
+template <typename T>
+std::string Bytes(const std::vector<T>& values) {
+  std::string bytes(values.size() * sizeof(T), '\0');
+  if (!bytes.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
+  if (!LittleEndian()) {
+    for (size_t at = 0; at < bytes.size(); at += sizeof(T)) {
+      for (size_t k = 0; k < sizeof(T) / 2; ++k)
+        std::swap(bytes[at + k], bytes[at + sizeof(T) - 1 - k]);
+    }
   }
+  return bytes;
+}
+
+void AppendUInt64(std::uint64_t value, std::string* out) {
+  *out += Bytes(std::vector<std::uint64_t>{value});
+}
+
+constexpr std::uint64_t kBlockSize = 32768;  // VTK's default compressor block
+
+// VTK's compressed layout (the header comment); false if zlib fails (out of
+// memory: compressBound leaves room for any input).
+bool Compressed(const std::string& bytes, std::string* out) {
+  const std::uint64_t size = bytes.size();
+  const std::uint64_t blocks = (size + kBlockSize - 1) / kBlockSize;
+  std::vector<std::uint64_t> header{blocks, kBlockSize, size % kBlockSize};
+  std::string data;
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    const std::uint64_t length = std::min(kBlockSize, size - b * kBlockSize);
+    std::string block(compressBound(length), '\0');
+    uLongf written = block.size();
+    if (compress2(reinterpret_cast<Bytef*>(block.data()), &written,
+                  reinterpret_cast<const Bytef*>(bytes.data() + b * kBlockSize), length,
+                  Z_BEST_SPEED) != Z_OK) {
+      return false;
+    }
+    header.push_back(written);
+    data.append(block, 0, written);
+  }
+  *out += Bytes(header) + data;
+  return true;
+}
+
+void AppendNumber(double value, std::string* text) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), Finite(value));
+  text->append(buffer, result.ptr);
+}
+
+void AppendNumber(long long value, std::string* text) { *text += std::to_string(value); }
+
+// One <DataArray>: inline text (kAscii) or an offset into the appended data.
+class ArrayWriter {
+ public:
+  ArrayWriter(std::ostream& xml, VtkEncoding encoding) : xml_(xml), encoding_(encoding) {}
+
+  template <typename T>
+  void Write(const char* type, const std::string& name, int components,
+             const std::vector<T>& values) {
+    xml_ << "<DataArray type=\"" << type << "\"";
+    if (!name.empty()) xml_ << " Name=\"" << name << "\"";
+    if (components > 1) xml_ << " NumberOfComponents=\"" << components << "\"";
+    if (encoding_ == VtkEncoding::kAscii) {
+      std::string text;
+      for (size_t i = 0; i < values.size(); ++i) {
+        if constexpr (std::is_floating_point_v<T>) {
+          AppendNumber(static_cast<double>(values[i]), &text);
+        } else {
+          AppendNumber(static_cast<long long>(values[i]), &text);
+        }
+        text += (i + 1) % components == 0 ? '\n' : ' ';
+      }
+      xml_ << " format=\"ascii\">\n" << text << "</DataArray>\n";
+      return;
+    }
+    xml_ << " format=\"appended\" offset=\"" << appended_.size() << "\"/>\n";
+    const std::string bytes = Bytes(values);
+    if (encoding_ == VtkEncoding::kZlib) {
+      compressed_ = Compressed(bytes, &appended_) && compressed_;
+    } else {
+      AppendUInt64(bytes.size(), &appended_);
+      appended_ += bytes;
+    }
+  }
+
+  const std::string& appended() const { return appended_; }
+  // False if zlib failed on an array.
+  bool compressed() const { return compressed_; }
+
+ private:
+  std::ostream& xml_;
+  VtkEncoding encoding_;
+  std::string appended_;
+  bool compressed_ = true;
+};
+
+std::vector<double> Flat(const std::vector<Eigen::Vector3d>& vectors) {
+  std::vector<double> flat;
+  flat.reserve(3 * vectors.size());
+  for (const Eigen::Vector3d& v : vectors) {
+    for (int k = 0; k < 3; ++k) flat.push_back(Finite(v[k]));
+  }
+  return flat;
+}
+
+std::vector<double> Finites(std::vector<double> values) {
+  for (double& v : values) v = Finite(v);
+  return values;
 }
 
 }  // namespace
 
-void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output) {
-  OutputFile file(path, "output: " + output);
+void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output,
+              VtkEncoding encoding) {
+  OutputFile file(path, "output: " + output, std::ios::binary | std::ios::trunc);
   std::ostream& out = file.stream();
-  out << std::setprecision(std::numeric_limits<double>::max_digits10);
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\""
-      << mesh.points.size() << "\" NumberOfCells=\"" << mesh.cells.size() << "\">\n";
+         "header_type=\"UInt64\""
+      << (encoding == VtkEncoding::kZlib ? " compressor=\"vtkZLibDataCompressor\"" : "")
+      << ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << mesh.points.size()
+      << "\" NumberOfCells=\"" << mesh.cells.size() << "\">\n";
+  ArrayWriter arrays(out, encoding);
   out << "<PointData>\n";
   for (const auto& [name, values] : mesh.point_vectors) {
-    out << "<DataArray type=\"Float64\" Name=\"" << name
-        << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    WriteVectors(out, values);
-    out << "</DataArray>\n";
+    arrays.Write("Float64", name, 3, Flat(values));
   }
   out << "</PointData>\n<CellData>\n";
   for (const auto& [name, values] : mesh.cell_integers) {
-    out << "<DataArray type=\"Int32\" Name=\"" << name << "\" format=\"ascii\">\n";
-    for (int value : values) out << value << '\n';
-    out << "</DataArray>\n";
+    arrays.Write("Int32", name, 1, std::vector<std::int32_t>(values.begin(), values.end()));
   }
-  out << "</CellData>\n<Points>\n"
-         "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  WriteVectors(out, mesh.points);
-  out << "</DataArray>\n</Points>\n<Cells>\n"
-         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (const auto& [name, values] : mesh.cell_scalars) {
+    arrays.Write("Float64", name, 1, Finites(values));
+  }
+  out << "</CellData>\n<Points>\n";
+  arrays.Write("Float64", "", 3, Flat(mesh.points));
+  out << "</Points>\n<Cells>\n";
+  std::vector<std::int32_t> connectivity, offsets;
   for (const std::vector<int>& cell : mesh.cells) {
-    for (size_t k = 0; k < cell.size(); ++k) out << (k == 0 ? "" : " ") << cell[k];
-    out << '\n';
+    connectivity.insert(connectivity.end(), cell.begin(), cell.end());
+    offsets.push_back(static_cast<std::int32_t>(connectivity.size()));
   }
-  out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-  long offset = 0;
-  for (const std::vector<int>& cell : mesh.cells) {
-    offset += static_cast<long>(cell.size());
-    out << offset << '\n';
+  std::vector<std::uint8_t> types;
+  for (VtkCell type : mesh.types) types.push_back(static_cast<std::uint8_t>(type));
+  arrays.Write("Int32", "connectivity", 1, connectivity);
+  arrays.Write("Int32", "offsets", 1, offsets);
+  arrays.Write("UInt8", "types", 1, types);
+  out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n";
+  if (!arrays.compressed()) {
+    throw OutputError(file.label(), path, OutputError::Kind::kWrite, "zlib could not compress");
   }
-  out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (VtkCell type : mesh.types) out << static_cast<int>(type) << '\n';
-  out << "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  if (encoding != VtkEncoding::kAscii) {
+    out << "<AppendedData encoding=\"raw\">\n_";
+    out.write(arrays.appended().data(), static_cast<std::streamsize>(arrays.appended().size()));
+    out << "\n</AppendedData>\n";
+  }
+  out << "</VTKFile>\n";
   file.Close();
 }
 

@@ -10,7 +10,9 @@
 //    F_i = dU/dx_i, the force the prescribed motion exerts against the
 //    potential (trapezoidal rule along the straight path);
 //  * step filters' own prescribed motions, StepFilter::PrescribedWork (moving
-//    obstacles).
+//    obstacles: the barrier's rate at fixed positions, and friction against
+//    their moving surface, h F . u at the step's end, core/term.h
+//    frame_velocity).
 // Damping, friction and the integrators' numerical dissipation only remove
 // energy, so an exact step has growth <= 0 up to the integrator's energy error
 // (zero for Newmark(1/4, 1/2) on linear forces). The step filters' work

@@ -5,8 +5,9 @@
   tools/animate.py DIR OUT.mp4            (needs ffmpeg)
 
 DIR/run.pvd lists the frames (io/frame_writer.h): the body (part 0: springs as
-lines, triangles, particles) and the contact obstacles (part 1), each with its
-simulated time. 2D scenes are drawn as lines and filled cells; 3D scenes as
+lines, triangles, particles), the contact obstacles (part 1) and a 3D solid's
+boundary triangles (part 2, drawn instead of its tetrahedra), each with its
+simulated time; ASCII or binary (raw or zlib) .vtu files. 2D scenes are drawn as lines and filled cells; 3D scenes as
 shaded triangles from a fixed camera (--elev, --azim; y is up, as in the
 built-in scenes). Obstacles are grey, the time is in the corner. At most
 --max-frames frames are drawn, evenly spaced over the run, so that a GIF
@@ -33,27 +34,75 @@ def fail(message, code=2):
     sys.exit(code)
 
 
-def numbers(element, kind=float):
-    return [kind(v) for v in (element.text or "").split()]
+FORMATS = {"Float64": "d", "Float32": "f", "Int64": "q", "Int32": "i", "UInt8": "B",
+           "UInt32": "I", "UInt64": "Q"}
+
+
+class Arrays:
+    """The DataArrays of one .vtu: inline ASCII, or binary appended data (raw,
+    or zlib-compressed in VTK's blocks: io/vtk_unstructured_grid.h)."""
+
+    def __init__(self, path):
+        try:
+            with open(path, "rb") as f:
+                data = f.read()
+        except OSError as e:
+            fail(f"{path}: {e}")
+        self.path, self.appended = path, b""
+        at = data.find(b"<AppendedData")
+        if at >= 0:  # binary after '_': not XML
+            self.appended = data[data.index(b"_", at) + 1:]
+            data = data[:at] + b"</VTKFile>"
+        try:
+            self.root = ET.fromstring(data)
+        except ET.ParseError as e:
+            fail(f"{path}: {e}")
+        self.header = "<" + FORMATS[self.root.get("header_type", "UInt32")]
+        self.zlib = self.root.get("compressor") == "vtkZLibDataCompressor"
+
+    def numbers(self, element, kind=float):
+        if element.get("format") != "appended":
+            return [kind(v) for v in (element.text or "").split()]
+        import struct
+        import zlib
+        size = struct.calcsize(self.header)
+        at = int(element.get("offset"))
+
+        def header(count):
+            nonlocal at
+            values = struct.unpack_from(self.header[0] + self.header[1] * count, self.appended, at)
+            at += count * size
+            return values
+
+        if self.zlib:
+            blocks = header(3)[0]
+            lengths = header(blocks)
+            raw = b""
+            for length in lengths:
+                raw += zlib.decompress(self.appended[at:at + length])
+                at += length
+        else:
+            length = header(1)[0]
+            raw = self.appended[at:at + length]
+        code = FORMATS[element.get("type")]
+        return [kind(v) for v in struct.unpack(f"<{len(raw) // struct.calcsize(code)}{code}", raw)]
 
 
 class Mesh:
     """One .vtu file: points, cells (point index lists) and their VTK types."""
 
     def __init__(self, path):
-        try:
-            root = ET.parse(path).getroot()
-        except (OSError, ET.ParseError) as e:
-            fail(f"{path}: {e}")
-        piece = root.find("UnstructuredGrid/Piece")
+        arrays = Arrays(path)
+        numbers = arrays.numbers
+        piece = arrays.root.find("UnstructuredGrid/Piece")
         if piece is None:
             fail(f"{path}: not a VTK unstructured grid (.vtu)")
         flat = numbers(piece.find("Points/DataArray"))
         self.points = [tuple(flat[i:i + 3]) for i in range(0, len(flat), 3)]
-        arrays = {a.get("Name"): a for a in piece.findall("Cells/DataArray")}
-        connectivity = numbers(arrays["connectivity"], int)
-        offsets = numbers(arrays["offsets"], int)
-        self.types = numbers(arrays["types"], int)
+        cells = {a.get("Name"): a for a in piece.findall("Cells/DataArray")}
+        connectivity = numbers(cells["connectivity"], int)
+        offsets = numbers(cells["offsets"], int)
+        self.types = numbers(cells["types"], int)
         self.cells, start = [], 0
         for end in offsets:
             self.cells.append(connectivity[start:end])
@@ -178,8 +227,13 @@ def draw_3d(ax, body, obstacles, lo, hi):
     faces += triangles
     colors += shaded(triangles, (0.35, 0.6, 0.85))
     if faces:
+        # Drawn far to near by each face's nearest vertex ("min"), not its
+        # centroid: a large sphere face whose centroid is nearer than the
+        # small cloth triangles resting on it was drawn over them (the sphere
+        # showed through the cloth). Still a painter's algorithm, not a depth
+        # buffer: tools/render_frames.py (ParaView) has one.
         ax.add_collection3d(Poly3DCollection(faces, facecolors=colors, edgecolors=colors,
-                                             linewidths=0.3, zorder=1))
+                                             linewidths=0.3, zorder=1, zsort="min"))
     if not triangles:
         springs = [[view(body.points[i]) for i in c] for c in body.cells_of(VTK_LINE)]
         ax.add_collection3d(Line3DCollection(springs, colors="#08519c", linewidths=0.8,
@@ -224,7 +278,9 @@ def main():
     for time, parts in series:
         if 0 not in parts:
             fail(f"{args.directory}/run.pvd: no body (part 0) at time {time:g}")
-        frames.append((time, Mesh(parts[0]), Mesh(parts[1]) if 1 in parts else None))
+        # A 3D solid's body is tetrahedra: its boundary (part 2) is drawn.
+        frames.append((time, Mesh(parts[2] if 2 in parts else parts[0]),
+                       Mesh(parts[1]) if 1 in parts else None))
     three_d = is_3d([m for _, body, obstacles in frames for m in (body, obstacles) if m])
     everything = [(m, is_obstacle) for _, body, obstacles in frames
                   for m, is_obstacle in ((body, False), (obstacles, True)) if m is not None]

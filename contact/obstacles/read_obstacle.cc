@@ -18,8 +18,8 @@ namespace {
 
 // Keys every shape takes besides its own (read after them: the order in which
 // errors are found).
-const std::vector<std::string> kCommonKeys = {"type", "velocity", "until", "mu",
-                                              "angular_velocity"};
+const std::vector<std::string> kCommonKeys = {"type",  "velocity",        "angular_velocity",
+                                              "until", "rotation_center", "mu"};
 
 std::vector<std::string> KeysOf(std::vector<std::string> own) {
   own.insert(own.end(), kCommonKeys.begin(), kCommonKeys.end());
@@ -31,19 +31,28 @@ Eigen::Vector3d ReadVelocity(const JsonNode& p, int dimension) {
   return p.Get("velocity").Vector3(dimension, limits::kMaxSpeed, "m/s");
 }
 
-// The motion law of moving nodes (core/prescribed_motion.h), translation only:
-// "until" stops it; a rotation is refused (its continuous collision detection
-// is not linear in the obstacle's frame).
+// The motion law of moving nodes (core/prescribed_motion.h): a velocity, an
+// angular velocity about "rotation_center" (a sphere's "center" is its own),
+// or both; "until" stops it.
 ObstaclePtr Finish(const JsonNode& p, std::shared_ptr<Obstacle> obstacle) {
-  if (p.Has("angular_velocity")) {
-    p.Get("angular_velocity")
-        .Fail(
-            "obstacles do not rotate (only \"velocity\" and \"until\" move them; a rotating "
-            "boundary can be made of moving nodes)");
+  const int dimension = obstacle->dimension();
+  if (auto omega = p.Find("angular_velocity")) {
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    if (dimension == 2) {
+      w[2] = omega->InRange(-limits::kMaxAngularVelocity, limits::kMaxAngularVelocity, "rad/s");
+    } else {
+      w = omega->Vector3(3, limits::kMaxAngularVelocity, "rad/s");
+    }
+    obstacle->set_rotation(  // "rotation_center" is required with it
+        w, p.Get("rotation_center").Vector3(dimension, limits::kMaxCoordinate, "m"));
+  } else if (p.Has("rotation_center")) {
+    p.Get("rotation_center").Fail("a rotation centre without \"angular_velocity\" has no effect");
   }
   if (auto until = p.Find("until")) {
     const double stop = until->InRange(0.0, limits::kMaxDuration, "s", /*min_open=*/true);
-    if (!obstacle->is_moving()) until->Fail("an obstacle without \"velocity\" does not move");
+    if (!obstacle->is_moving()) {
+      until->Fail("an obstacle without \"velocity\" or \"angular_velocity\" does not move");
+    }
     obstacle->set_until(stop);
   }
   if (auto mu = p.Find("mu")) {

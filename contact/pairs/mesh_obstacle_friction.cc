@@ -21,10 +21,13 @@ namespace ipstep {
 void MeshObstaclePairs::LagFriction(const double* x, double t) {
   friction_.clear();
   const double kappa = *c_.kappa;
-  auto lag = [&](double d, const Eigen::Vector3d& n, double weight, const Obstacle& obstacle) {
+  // point: the primitive's closest point (the obstacle's material point there
+  // moves within |omega| d_hat of the one it touches).
+  auto lag = [&](double d, const Eigen::Vector3d& n, double weight, const Obstacle& obstacle,
+                 const Eigen::Vector3d& point) {
     PrimitiveObstacleFrictionLag f;
     f.tangents = TangentBasis(n, 3).leftCols<2>();
-    f.obstacle_velocity = obstacle.VelocityAt(t);
+    f.obstacle_velocity = obstacle.VelocityAt(point, t);
     f.obstacle = &obstacle;
     f.normal_force = -kappa * weight * BarrierDerivative(d, d_hat_);
     return f;
@@ -33,9 +36,12 @@ void MeshObstaclePairs::LagFriction(const double* x, double t) {
     Eigen::Vector3d grad[3], w;
     const double d = Distance(x, t, p, grad, &w);
     if (!(d > 0.0 && d < d_hat_)) continue;
-    PrimitiveObstacleFrictionLag f = lag(
-        d, grad[0] + grad[1] + grad[2], surface_->face_weights[p.face], *(*obstacles_)[p.obstacle]);
     const auto& face = surface_->faces[p.face];
+    const Eigen::Vector3d point =
+        w[0] * Vertex(x, face[0]) + w[1] * Vertex(x, face[1]) + w[2] * Vertex(x, face[2]);
+    PrimitiveObstacleFrictionLag f =
+        lag(d, grad[0] + grad[1] + grad[2], surface_->face_weights[p.face],
+            *(*obstacles_)[p.obstacle], point);
     f.num_nodes = 3;
     f.nodes = {face[0], face[1], face[2]};
     f.alpha = {w[0], w[1], w[2]};
@@ -46,9 +52,10 @@ void MeshObstaclePairs::LagFriction(const double* x, double t) {
     double s = 0.0;
     const double d = Distance(x, t, p, grad, &s);
     if (!(d > 0.0 && d < d_hat_)) continue;
-    PrimitiveObstacleFrictionLag f =
-        lag(d, grad[0] + grad[1], surface_->edge_weights[p.edge], *(*obstacles_)[p.obstacle]);
     const auto& edge = surface_->edges[p.edge];
+    const Eigen::Vector3d point = (1.0 - s) * Vertex(x, edge[0]) + s * Vertex(x, edge[1]);
+    PrimitiveObstacleFrictionLag f = lag(d, grad[0] + grad[1], surface_->edge_weights[p.edge],
+                                         *(*obstacles_)[p.obstacle], point);
     f.num_nodes = 2;
     f.nodes = {edge[0], edge[1], -1};
     f.alpha = {1.0 - s, s, 0.0};

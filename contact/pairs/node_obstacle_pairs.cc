@@ -130,11 +130,12 @@ void NodeObstaclePairs::LagFriction(const double* x, double t) {
   for (const Pair& pair : pairs_.pairs()) {
     const Obstacle& o = *(*c_.obstacles)[pair.obstacle];
     Eigen::Vector3d n;
-    const double d = o.Distance(Point(x, pair.slot), t, &n);
+    const Eigen::Vector3d point = Point(x, pair.slot);
+    const double d = o.Distance(point, t, &n);
     if (!(d > 0.0 && d < c_.d_hat)) continue;
     const double lambda = -*c_.kappa * c_.mesh->weights[pair.slot] * BarrierDerivative(d, c_.d_hat);
     lagged_.push_back(LaggedFriction{c_.mesh->nodes[pair.slot], TangentBasis(n, c_.dimension),
-                                     o.VelocityAt(t), lambda, &o});
+                                     o.VelocityAt(point, t), lambda, &o});
   }
 }
 
@@ -155,6 +156,7 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
       term.family = c_.friction_family;
       term.impulsive = true;
       term.nodes = {f.node};
+      term.frame_velocity = f.obstacle_velocity;
       term.cost = std::make_unique<ObstacleFriction>(c_.step, f.node, f.tangents,
                                                      f.obstacle_velocity, eps_v, side, c);
       const double scale = mu * f.normal_force;

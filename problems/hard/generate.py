@@ -70,6 +70,33 @@ def main():
               "impact at %d m/s with d_hat %g and h = %.3g s (6 mm per step)"
               % (speed, d_hat, scene["time_step"]))
 
+    # Rotating obstacles (docs/contact.md, "Rotating obstacles").
+    paddle = {"type": "box", "min": [-1.55, -0.9], "max": [-1.45, 0.8], "angular_velocity": 6.0,
+              "rotation_center": [-1.5, 0.8], "until": 0.5}
+    for name, density in (("paddle", 10), ("paddle_heavy", 1000)):
+        scene = square_over([paddle, {"type": "plane", "point": [0, -1], "normal": [0, 1]}],
+                            0.005, steps=100)
+        scene["grid"]["density"] = density
+        write(name, scene,
+              "A 1.7 m paddle (2D box) hinged at (-1.5, 0.8) swings at 6 rad/s (10 cm per step at "
+              "the tip) into the side of the drop square (%g kg) resting on the ground, and stops "
+              "after 0.5 s" % density)
+
+    tilt = square_over([{"type": "plane", "point": [0, -1], "normal": [0, 1],
+                         "angular_velocity": 0.5, "rotation_center": [0, -1], "until": 1.0}],
+                       0.005, steps=300)
+    tilt["effects"].append("friction")
+    tilt["friction"] = {"mu": 0.3}
+    write("tilting_floor", tilt,
+          "The drop square resting on the ground, which tilts about the square's foot at 0.5 rad/s "
+          "to 0.5 rad (t = 1 s) and stops; friction mu 0.3 holds it up to about 0.29 rad, then it "
+          "slides")
+
+    write("swing_3d", swing_3d(),
+          "A 3D plate (0.6 x 0.6 x 0.02 m box) hinged along x swings up at 4 rad/s through a "
+          "falling 10 x 10 cloth (0.4 m, Hookean structural and shear springs k = 100) and stops "
+          "after 0.5 s: its corners, edges and faces meet the cloth's faces, edges and nodes")
+
     # thrown_stack.json is kept as a file, not generated: it is the mass-spring
     # two_squares of before (two drop squares; the built-in is now a pair of
     # neo-Hookean squares, and solids take no per-node initial velocities).
@@ -78,6 +105,18 @@ def main():
           "A hanging 10 x 10 cloth (1 m, Hookean k = 1e4 structural and shear springs, top corners "
           "pinned) whose node masses alternate 1 kg and 1e-6 kg in a checkerboard: neighbours "
           "differ by 1e6")
+
+
+def swing_3d():
+    spring = {"model": "hookean", "stiffness": 100}
+    return {"dimension": 3, "time_step": 0.01, "steps": 80,
+            "effects": ["gravity", "springs", "contact"], "gravity": [0, 0, -9.81],
+            "grid": {"nx": 10, "ny": 10, "width": 0.4, "height": 0.4, "origin": [0.3, 0.2, 0.0],
+                     "total_mass": 0.1, "structural": spring, "shear": spring},
+            "contact": {"dhat": 2e-3, "kappa": 1e3, "obstacles": [
+                {"type": "box", "min": [0.2, -0.6, -0.22], "max": [0.8, 0.0, -0.2],
+                 "angular_velocity": [-4.0, 0, 0], "rotation_center": [0, 0, -0.2], "until": 0.5},
+                {"type": "plane", "point": [0, 0, -1.5], "normal": [0, 0, 1]}]}}
 
 
 def mass_ratio(n=10, k=1e4, heavy=1.0, light=1e-6):

@@ -129,14 +129,20 @@ TEST_F(OutputSignals, AFullDiskIsExitCode3NamingTheFlag) {
   }
 }
 
-// Frames: a .pvd or a .vtu that cannot be written (here: links to /dev/full).
+// Frames: a .pvd or a .vtu that cannot be written (here: links to /dev/full),
+// in every --frames_format; a 3D solid's surface file too.
 TEST_F(OutputSignals, AFrameThatCannotBeWrittenIsExitCode3) {
-  for (const char* file : {"run.pvd", "frame_00000.vtu", "frame_00002.vtu"}) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"run.pvd", "--scene=drop"},
+      {"frame_00000.vtu", "--scene=drop --frames_format=ascii"},
+      {"frame_00002.vtu", "--scene=drop --frames_format=raw"},
+      {"surface_00002.vtu", "--scene=twisted_bar_3d"}};
+  for (const auto& [file, scene] : cases) {
     const fs::path frames = dir_ / (std::string("frames_") + file);
     fs::create_directories(frames);
     fs::create_symlink("/dev/full", frames / file);
     const Outcome o =
-        RunIpstep("--scene=drop --steps=4 --frame_every=2 --frames=" + frames.string());
+        RunIpstep(std::string(scene) + " --steps=4 --frame_every=2 --frames=" + frames.string());
     EXPECT_EQ(o.exit_code, 3) << file << "\n" << o.output;
     EXPECT_NE(o.output.find("ipstep: error: flag: --frames: write failed on '" +
                             (frames / file).string() + "': No space left on device"),

@@ -73,6 +73,7 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--optimizer=projected_newton --lbfgs_rank=3", "flag", "--lbfgs_rank");
   ExpectInputError("--max_iterations=-1", "flag", "--max_iterations");
   ExpectInputError("--frame_every=0", "flag", "--frame_every");
+  ExpectInputError("--frames_format=binary", "flag", "--frames_format");
   ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
   ExpectInputError("--stats=/nonexistent_dir/x.csv", "flag", "--stats");
   ExpectInputError("stray_argument", "command line", "stray_argument");
@@ -648,6 +649,97 @@ TEST_F(ProgramInput, TuneRecommendsARunThatReachesTheTarget) {
       std::string(IPSTEP_TUNE_BINARY) + " --scene=oscillator --target_error=0", "");
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("--target_error"), std::string::npos) << bad.output;
+}
+
+// --match_default: the target is the default configuration's own measured
+// error (backward Euler at h = 0.1 s on the oscillator: |x - (1 + 0.1 cos 10)|
+// at t = 10 s), and the recommendation, run, is within it.
+TEST_F(ProgramInput, TuneMatchDefaultTargetsTheDefaultsOwnError) {
+  const Outcome o = ipstep::testing::RunProgram(
+      std::string(IPSTEP_TUNE_BINARY) + " --scene=oscillator --match_default 2>/dev/null; exit $?",
+      "");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string prefix = "error target ";
+  const size_t at = o.output.find(prefix);
+  ASSERT_NE(at, std::string::npos) << o.output;
+  const double target = std::stod(o.output.substr(at + prefix.size()));
+  EXPECT_NE(o.output.find("m (the default's error)"), std::string::npos) << o.output;
+  // x at t = 10 s of an ipstep run, node 1's first coordinate.
+  auto final_x = [this](const std::string& arguments) {
+    const std::string positions = (dir_ / "run.csv").string();
+    const Outcome run = RunIpstep(arguments + " --positions=" + positions);
+    EXPECT_EQ(run.exit_code, 0) << arguments << "\n" << run.output;
+    std::ifstream in(positions);
+    std::string line;
+    for (int k = 0; k < 3; ++k) std::getline(in, line);  // header, node 0, node 1
+    return std::stod(line.substr(line.find(',') + 1));
+  };
+  const double exact = 1.0 + 0.1 * std::cos(10.0);
+  const double error = std::abs(final_x("--scene=oscillator") - exact);  // the default
+  EXPECT_NEAR(target, error, 1e-3 * error) << o.output;
+  const size_t command = o.output.find("\n  ipstep ");
+  ASSERT_NE(command, std::string::npos) << o.output;
+  const std::string recommended =
+      o.output.substr(command + 9, o.output.find('\n', command + 3) - command - 9);
+  EXPECT_LE(std::abs(final_x(recommended) - exact), target) << recommended;
+  const Outcome both = ipstep::testing::RunProgram(
+      std::string(IPSTEP_TUNE_BINARY) + " --scene=oscillator --match_default --target_error=1", "");
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("--match_default"), std::string::npos) << both.output;
+}
+
+// --tune_output: every run of the search, then the second runs of the pick
+// and the default (role timing) and the default; exactly one pick, whose
+// configuration is the recommended command line's, and the default is
+// backward Euler x newton at the scene's step with the default tolerance.
+TEST_F(ProgramInput, TuneOutputMarksThePickTheDefaultAndTheirSecondRuns) {
+  const std::string csv = (dir_ / "tune.csv").string();
+  const Outcome o = ipstep::testing::RunProgram(std::string(IPSTEP_TUNE_BINARY) +
+                                                    " --scene=oscillator --target_error=1e-3 "
+                                                    "--tune_output=" +
+                                                    csv + " 2>/dev/null; exit $?",
+                                                "");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line,
+            "integrator,optimizer,adaptive,dt,tolerance,error_tolerance,steps,failed,iterations,"
+            "seconds,error,role");
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream split(line);
+    for (std::string field; std::getline(split, field, ',');) fields.push_back(field);
+    ASSERT_EQ(fields.size(), 12u) << line;
+    rows.push_back(fields);
+  }
+  ASSERT_GE(rows.size(), 4u);
+  int picks = 0;
+  std::vector<std::string> pick;
+  for (size_t k = 0; k + 3 < rows.size(); ++k) {
+    EXPECT_TRUE(rows[k][11] == "search" || rows[k][11] == "pick") << rows[k][11];
+    if (rows[k][11] == "pick") {
+      ++picks;
+      pick = rows[k];
+    }
+  }
+  ASSERT_EQ(picks, 1);
+  const std::vector<std::string>& pick_again = rows[rows.size() - 3];
+  const std::vector<std::string>& default_again = rows[rows.size() - 2];
+  const std::vector<std::string>& fallback = rows.back();
+  EXPECT_EQ(pick_again[11], "timing");
+  EXPECT_EQ(default_again[11], "timing");
+  EXPECT_EQ(fallback[11], "default");
+  for (int field : {0, 1, 2, 3, 4, 5, 6, 8, 10}) {  // all but failed, seconds, role
+    EXPECT_EQ(pick_again[field], pick[field]) << field;
+    EXPECT_EQ(default_again[field], fallback[field]) << field;
+  }
+  EXPECT_EQ(
+      fallback[0] + "," + fallback[1] + "," + fallback[2] + "," + fallback[3] + "," + fallback[4],
+      "backward_euler,newton,0,0.1,1e-05");
+  EXPECT_NE(o.output.find("--integrator=" + pick[0] + " --optimizer=" + pick[1]), std::string::npos)
+      << o.output;
 }
 
 TEST_F(ProgramInput, EveryIntegratorAndOptimizerRunsEveryBuiltinScene) {

@@ -65,10 +65,10 @@ TEST(ObstacleUntil, TheCeilingStopsAndNeverReachesTheParticle) {
   scene["contact"]["obstacles"][0]["until"] = 0.455;
   Simulation sim(Parse(scene, "until.json"), Options());
   const Obstacle& ceiling = *Filter(sim).obstacles()[0];
-  EXPECT_DOUBLE_EQ(ceiling.Shift(10.0).y(), -0.455);
-  EXPECT_DOUBLE_EQ(ceiling.Shift(0.2).y(), -0.2);
-  EXPECT_EQ(ceiling.VelocityAt(0.5).norm(), 0.0);
-  EXPECT_EQ(ceiling.VelocityAt(0.4).y(), -1.0);
+  EXPECT_DOUBLE_EQ(ceiling.ToWorld(Eigen::Vector3d::Zero(), 10.0).y(), -0.455);
+  EXPECT_DOUBLE_EQ(ceiling.ToWorld(Eigen::Vector3d::Zero(), 0.2).y(), -0.2);
+  EXPECT_EQ(ceiling.VelocityAt(Eigen::Vector3d::Zero(), 0.5).norm(), 0.0);
+  EXPECT_EQ(ceiling.VelocityAt(Eigen::Vector3d::Zero(), 0.4).y(), -1.0);
   for (int step = 0; step < 60; ++step) {
     const StepReport r = sim.Step();
     ASSERT_TRUE(r.converged) << r.step << " " << r.status;
@@ -245,7 +245,18 @@ TEST(ContactKeysInput, BadValuesNameTheKeyAndIndex) {
   }
   json s = scene;
   s["contact"]["obstacles"][1]["angular_velocity"] = 1.0;
-  ExpectInputError(s, o1 + "angular_velocity", "obstacles do not rotate");
+  ExpectInputError(s, o1 + "rotation_center", "missing");
+  s["contact"]["obstacles"][1]["angular_velocity"] = {0, 0, 1};  // 2D: a number
+  s["contact"]["obstacles"][1]["rotation_center"] = {0, 0};
+  ExpectInputError(s, o1 + "angular_velocity", "");
+  s["contact"]["obstacles"][1]["angular_velocity"] = 1e9;
+  ExpectInputError(s, o1 + "angular_velocity", "");
+  s = scene;
+  s["contact"]["obstacles"][1]["rotation_center"] = {0, 0};
+  ExpectInputError(s, o1 + "rotation_center", "without \"angular_velocity\"");
+  s = scene;
+  s["contact"]["obstacles"][1]["center"] = {0, 0};
+  ExpectInputError(s, o1 + "center", "");
   s = scene;
   s["contact"]["obstacles"][0]["until"] = 1.0;
   ExpectInputError(s, "contact.obstacles[0].until", "does not move");

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# ctest animate_drop: ipstep --frames writes a ParaView series that Python's XML
-# parser reads (run.pvd's timesteps are the simulated times of --stats, every
-# .vtu has the scene's node count), and tools/animate.py draws it as a GIF with
-# the requested number of frames. Exit code 77 (skipped) without an interpreter
+# ctest animate_drop: ipstep --frames --frames_format=ascii writes a ParaView
+# series that Python's XML parser reads (run.pvd's timesteps are the simulated
+# times of --stats, every .vtu has the scene's node count), and tools/animate.py
+# draws it, and the default zlib frames, as GIFs with the requested number of
+# frames. Exit code 77 (skipped) without an interpreter
 # that has matplotlib and Pillow.
 #   animate_test.sh IPSTEP SOURCE_DIR WORK_DIR [PYTHON]
 set -euo pipefail
@@ -21,7 +22,8 @@ fi
 rm -rf "$work"
 mkdir -p "$work"
 "$ipstep" --scene=drop --steps=30 --frames="$work/frames" --frame_every=3 --stats="$work/stats.csv" \
-  > /dev/null
+  --frames_format=ascii > /dev/null
+"$ipstep" --scene=drop --steps=30 --frames="$work/zlib" --frame_every=3 > /dev/null
 "$python" - "$work" << 'PY'
 import csv, os, sys
 import xml.etree.ElementTree as ET
@@ -40,12 +42,18 @@ for dataset, time in zip(bodies, times):
 print("run.pvd and the .vtu files parse; timesteps are the simulated times")
 PY
 "$python" "$source/tools/animate.py" "$work/frames" "$work/drop.gif" --max-frames 6
-"$python" - "$work/drop.gif" << 'PY'
+"$python" "$source/tools/animate.py" "$work/zlib" "$work/drop_zlib.gif" --max-frames 6
+"$python" - "$work/drop.gif" "$work/drop_zlib.gif" << 'PY'
 import sys
-from PIL import Image
-image = Image.open(sys.argv[1])
-assert image.format == "GIF" and image.n_frames == 6, (image.format, image.n_frames)
-print("drop.gif: 6 frames")
+from PIL import Image, ImageChops
+ascii, zlib = Image.open(sys.argv[1]), Image.open(sys.argv[2])
+assert ascii.format == "GIF" and ascii.n_frames == 6, (ascii.format, ascii.n_frames)
+for frame in range(6):
+    ascii.seek(frame)
+    zlib.seek(frame)
+    same = ImageChops.difference(ascii.convert("RGB"), zlib.convert("RGB")).getbbox() is None
+    assert same, f"frame {frame} differs between the ascii and the zlib frames"
+print("drop.gif: 6 frames, the same from ascii and zlib frames")
 PY
 # Bad input: one error line, exit code 2.
 if "$python" "$source/tools/animate.py" "$work/no_such_dir" "$work/x.gif" 2> "$work/err"; then

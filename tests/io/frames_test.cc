@@ -29,6 +29,7 @@
 #include "sim/default_effects.h"
 #include "sim/simulation.h"
 #include "tests/support/run_program.h"
+#include "tests/support/vtu_arrays.h"
 
 namespace {
 
@@ -60,14 +61,9 @@ std::vector<std::map<std::string, std::string>> Elements(const std::string& xml,
   return elements;
 }
 
-// The numbers of the Points DataArray of a .vtu.
+// The numbers of the Points DataArray of a .vtu (any encoding).
 std::vector<double> PointCoordinates(const std::string& vtu) {
-  const size_t points = vtu.find("<Points>");
-  const size_t start = vtu.find('>', vtu.find("<DataArray", points)) + 1;
-  std::stringstream in(vtu.substr(start, vtu.find("</DataArray>", start) - start));
-  std::vector<double> values;
-  for (double v; in >> v;) values.push_back(v);
-  return values;
+  return ipstep::testing::VtuArrays(vtu).Values("");
 }
 
 // A built-in scene; contact is registered as an effect with its own top-level
@@ -78,15 +74,10 @@ ipstep::Scene Load(const std::string& name) {
   return ipstep::LoadScene(name, options);
 }
 
-// The numbers of the DataArray named `name` of a .vtu; empty if there is none.
+// The numbers of the DataArray named `name` of a .vtu (any encoding); empty if
+// there is none.
 std::vector<double> NamedArray(const std::string& vtu, const std::string& name) {
-  const size_t at = vtu.find("Name=\"" + name + "\"");
-  if (at == std::string::npos) return {};
-  const size_t start = vtu.find('>', at) + 1;
-  std::stringstream in(vtu.substr(start, vtu.find("</DataArray>", start) - start));
-  std::vector<double> values;
-  for (double v; in >> v;) values.push_back(v);
-  return values;
+  return ipstep::testing::VtuArrays(vtu).Values(name);
 }
 
 class Frames : public ipstep::testing::ProgramTest {
@@ -98,7 +89,8 @@ class Frames : public ipstep::testing::ProgramTest {
     ipstep::SimulationOptions options;
     options.steps = steps;
     ipstep::Simulation sim(scene, options);
-    ipstep::FrameWriter frames((dir_ / "frames").string(), sim);
+    ipstep::FrameWriter frames((dir_ / "frames").string(), sim, "frames",
+                               ipstep::VtkEncoding::kAscii);
     std::vector<double> times{sim.state().time};
     frames.Write(0);
     for (int step = 1; step <= steps; ++step) {
