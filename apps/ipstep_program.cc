@@ -52,6 +52,9 @@ DEFINE_string(frames, "",
 DEFINE_string(frames_format, "zlib",
               "With --frames: zlib (binary, compressed: the smallest files), raw (binary) or "
               "ascii (text, for diffs); docs/paraview.md");
+DEFINE_string(frames_precision, "float32",
+              "With --frames: float32 (points and fields to ~7 digits, ParaView's own default; "
+              "smaller files) or float64 (exact doubles, for post-processing); docs/paraview.md");
 DEFINE_int32(frame_every, 1, "Write a frame every N steps (with --frames), in [1, 10000000]");
 DEFINE_bool(progress, true,
             "Progress on stderr: a line for runs longer than 3 s and, when stderr is a terminal "
@@ -104,6 +107,12 @@ int Run(const EffectRegistry& registry) {
     throw InputError(
         "flag", "--frames_format",
         "must be 'zlib', 'raw' or 'ascii', got '" + ClipInput(FLAGS_frames_format) + "'");
+  }
+  VtkPrecision frames_precision;
+  if (!ParseVtkPrecision(FLAGS_frames_precision, &frames_precision)) {
+    throw InputError(
+        "flag", "--frames_precision",
+        "must be 'float32' or 'float64', got '" + ClipInput(FLAGS_frames_precision) + "'");
   }
   SetupProgress setup("ipstep", SetupDelay());
   setup.Begin("loading scene " + ClipInput(FLAGS_scene));
@@ -175,7 +184,8 @@ int Run(const EffectRegistry& registry) {
     sim.set_iteration_sink([&](const IterationRecord& r) { iterations->Write(r); });
   }
   if (!FLAGS_frames.empty()) {
-    frames = std::make_unique<FrameWriter>(FLAGS_frames, sim, "frames", frames_format);
+    frames =
+        std::make_unique<FrameWriter>(FLAGS_frames, sim, "frames", frames_format, frames_precision);
     frames->Write(0);
   }
 

@@ -46,8 +46,8 @@ const std::vector<GroupEntry>& Groups() {
        {"contact_kappa", "contact_dhat", "friction_mu", "friction_iterations"}},
       {"output",
        "Output",
-       {"stats", "iterations_log", "positions", "frames", "frames_format", "frame_every",
-        "progress", "output", "shard", "merge", "dry_run"}},
+       {"stats", "iterations_log", "positions", "frames", "frames_format", "frames_precision",
+        "frame_every", "progress", "output", "shard", "merge", "dry_run"}},
   };
   return *groups;
 }

@@ -80,8 +80,12 @@ std::string Numbered(const char* stem, int frame) {
 }  // namespace
 
 FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
-                         const std::string& output, VtkEncoding encoding)
-    : directory_(directory), output_(output), encoding_(encoding), sim_(sim) {
+                         const std::string& output, VtkEncoding encoding, VtkPrecision precision)
+    : directory_(directory),
+      output_(output),
+      encoding_(encoding),
+      precision_(precision),
+      sim_(sim) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
@@ -177,14 +181,16 @@ void FrameWriter::Write(int frame) {
     }
   }
   const std::string body_file = Numbered("frame", frame);
-  WriteVtu(body, (std::filesystem::path(directory_) / body_file).string(), output_, encoding_);
+  WriteVtu(body, (std::filesystem::path(directory_) / body_file).string(), output_, encoding_,
+           precision_);
   series_->Add(s.time, 0, "body", body_file);
   if (!obstacles_.empty()) {
     std::string obstacle_file = "obstacles.vtu";
     if (obstacles_move_) obstacle_file = Numbered("obstacles", frame);
     if (obstacles_move_ || !static_obstacles_written_) {
       WriteVtu(ObstacleMesh(obstacles_, s.time, centre_, extent_),
-               (std::filesystem::path(directory_) / obstacle_file).string(), output_, encoding_);
+               (std::filesystem::path(directory_) / obstacle_file).string(), output_, encoding_,
+               precision_);
       static_obstacles_written_ = true;
     }
     series_->Add(s.time, 1, "obstacles", obstacle_file);
@@ -226,7 +232,8 @@ void FrameWriter::WriteSurface(int frame, const VtkMesh& body, const ElementFiel
     surface.cell_scalars.push_back({name, per_face});
   }
   const std::string file = Numbered("surface", frame);
-  WriteVtu(surface, (std::filesystem::path(directory_) / file).string(), output_, encoding_);
+  WriteVtu(surface, (std::filesystem::path(directory_) / file).string(), output_, encoding_,
+           precision_);
   series_->Add(sim_.state().time, 2, "surface", file);
 }
 

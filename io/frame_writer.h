@@ -17,7 +17,8 @@
 //   2  "surface", for a 3D elastic solid: its boundary, DIR/surface_NNNNN.vtu: the
 //      boundary triangles on the boundary nodes, with the body's point data
 //      and, per triangle, the fields of the element it bounds.
-// The files are binary (zlib-compressed by default) or ASCII: VtkEncoding
+// The files are binary (zlib-compressed by default) or ASCII: VtkEncoding, with
+// points and fields in Float32 (the default) or Float64: VtkPrecision
 // (io/vtk_unstructured_grid.h). tools/animate.py and tools/render_frames.py
 // (docs/paraview.md) draw such a directory.
 #pragma once
@@ -43,7 +44,8 @@ class FrameWriter {
   // directory ..." if it cannot, OutputError (io/output_file.h) if it cannot
   // write DIR/run.pvd (`output`: the caller's name for the series).
   FrameWriter(const std::string& directory, const Simulation& sim,
-              const std::string& output = "frames", VtkEncoding encoding = VtkEncoding::kZlib);
+              const std::string& output = "frames", VtkEncoding encoding = VtkEncoding::kZlib,
+              VtkPrecision precision = VtkPrecision::kFloat32);
   // Writes the simulation's current state as frame `frame` (e.g. the step);
   // throws OutputError if a file cannot be opened or written.
   void Write(int frame);
@@ -57,6 +59,7 @@ class FrameWriter {
   std::string directory_;
   std::string output_;
   VtkEncoding encoding_;
+  VtkPrecision precision_;
   const Simulation& sim_;
   std::unique_ptr<PvdSeries> series_;  // DIR/run.pvd
   std::vector<std::array<int, 3>> triangles_;

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include "io/output_file.h"
@@ -34,6 +35,20 @@ bool ParseVtkEncoding(const std::string& name, VtkEncoding* encoding) {
   return false;
 }
 
+const char* VtkPrecisionName(VtkPrecision precision) {
+  return precision == VtkPrecision::kFloat32 ? "float32" : "float64";
+}
+
+bool ParseVtkPrecision(const std::string& name, VtkPrecision* precision) {
+  for (VtkPrecision p : {VtkPrecision::kFloat32, VtkPrecision::kFloat64}) {
+    if (name == VtkPrecisionName(p)) {
+      *precision = p;
+      return true;
+    }
+  }
+  return false;
+}
+
 void VtkMesh::AddCell(VtkCell type, std::vector<int> cell_points) {
   cells.push_back(std::move(cell_points));
   types.push_back(type);
@@ -41,7 +56,7 @@ void VtkMesh::AddCell(VtkCell type, std::vector<int> cell_points) {
 
 namespace {
 
-static_assert(sizeof(double) == 8 && sizeof(std::int32_t) == 4);
+static_assert(sizeof(double) == 8 && sizeof(float) == 4 && sizeof(std::int32_t) == 4);
 
 double Finite(double value) { return std::isfinite(value) ? value : 0.0; }
 
@@ -95,9 +110,10 @@ bool Compressed(const std::string& bytes, std::string* out) {
   return true;
 }
 
-void AppendNumber(double value, std::string* text) {
+template <typename T>
+void AppendNumber(T value, std::string* text) {
   char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), Finite(value));
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   text->append(buffer, result.ptr);
 }
 
@@ -106,7 +122,24 @@ void AppendNumber(long long value, std::string* text) { *text += std::to_string(
 // One <DataArray>: inline text (kAscii) or an offset into the appended data.
 class ArrayWriter {
  public:
-  ArrayWriter(std::ostream& xml, VtkEncoding encoding) : xml_(xml), encoding_(encoding) {}
+  ArrayWriter(std::ostream& xml, VtkEncoding encoding, VtkPrecision precision)
+      : xml_(xml), encoding_(encoding), precision_(precision) {}
+
+  // Finite floating-point values as Float32 or Float64 (the precision).
+  void WriteReals(const std::string& name, int components, const std::vector<double>& values) {
+    if (precision_ == VtkPrecision::kFloat64) {
+      Write("Float64", name, components, values);
+    } else {
+      std::vector<float> floats;
+      floats.reserve(values.size());
+      for (double v : values) {
+        // Beyond float's range is written as 0, as a non-finite number.
+        floats.push_back(std::abs(v) <= std::numeric_limits<float>::max() ? static_cast<float>(v)
+                                                                          : 0.0f);
+      }
+      Write("Float32", name, components, floats);
+    }
+  }
 
   template <typename T>
   void Write(const char* type, const std::string& name, int components,
@@ -118,7 +151,7 @@ class ArrayWriter {
       std::string text;
       for (size_t i = 0; i < values.size(); ++i) {
         if constexpr (std::is_floating_point_v<T>) {
-          AppendNumber(static_cast<double>(values[i]), &text);
+          AppendNumber(values[i], &text);
         } else {
           AppendNumber(static_cast<long long>(values[i]), &text);
         }
@@ -144,6 +177,7 @@ class ArrayWriter {
  private:
   std::ostream& xml_;
   VtkEncoding encoding_;
+  VtkPrecision precision_;
   std::string appended_;
   bool compressed_ = true;
 };
@@ -165,7 +199,7 @@ std::vector<double> Finites(std::vector<double> values) {
 }  // namespace
 
 void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output,
-              VtkEncoding encoding) {
+              VtkEncoding encoding, VtkPrecision precision) {
   OutputFile file(path, "output: " + output, std::ios::binary | std::ios::trunc);
   std::ostream& out = file.stream();
   out << "<?xml version=\"1.0\"?>\n"
@@ -174,20 +208,20 @@ void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& o
       << (encoding == VtkEncoding::kZlib ? " compressor=\"vtkZLibDataCompressor\"" : "")
       << ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << mesh.points.size()
       << "\" NumberOfCells=\"" << mesh.cells.size() << "\">\n";
-  ArrayWriter arrays(out, encoding);
+  ArrayWriter arrays(out, encoding, precision);
   out << "<PointData>\n";
   for (const auto& [name, values] : mesh.point_vectors) {
-    arrays.Write("Float64", name, 3, Flat(values));
+    arrays.WriteReals(name, 3, Flat(values));
   }
   out << "</PointData>\n<CellData>\n";
   for (const auto& [name, values] : mesh.cell_integers) {
     arrays.Write("Int32", name, 1, std::vector<std::int32_t>(values.begin(), values.end()));
   }
   for (const auto& [name, values] : mesh.cell_scalars) {
-    arrays.Write("Float64", name, 1, Finites(values));
+    arrays.WriteReals(name, 1, Finites(values));
   }
   out << "</CellData>\n<Points>\n";
-  arrays.Write("Float64", "", 3, Flat(mesh.points));
+  arrays.WriteReals("", 3, Flat(mesh.points));
   out << "</Points>\n<Cells>\n";
   std::vector<std::int32_t> connectivity, offsets;
   for (const std::vector<int>& cell : mesh.cells) {

@@ -13,7 +13,9 @@
 //           (compressor="vtkZLibDataCompressor"): a UInt64 header [number of
 //           blocks, block size, size of a partial last block or 0, the
 //           compressed size of each block], then the compressed blocks.
-// Points and floating-point data are Float64, connectivity and offsets Int32.
+// Points and floating-point data are Float32 or Float64 (VtkPrecision; ASCII
+// Float32 numbers in the shortest form that reads back to the same float),
+// connectivity and offsets Int32, cell types UInt8.
 // A non-finite number is written as 0 (a diverged state is visible in the
 // run's CSV and status, not in its picture).
 #pragma once
@@ -39,10 +41,16 @@ enum class VtkCell : std::uint8_t {
 
 enum class VtkEncoding { kAscii, kRaw, kZlib };
 
+enum class VtkPrecision { kFloat32, kFloat64 };
+
 // "ascii", "raw", "zlib".
 const char* VtkEncodingName(VtkEncoding encoding);
 // False for an unknown name.
 bool ParseVtkEncoding(const std::string& name, VtkEncoding* encoding);
+// "float32", "float64".
+const char* VtkPrecisionName(VtkPrecision precision);
+// False for an unknown name.
+bool ParseVtkPrecision(const std::string& name, VtkPrecision* precision);
 
 struct VtkMesh {
   std::vector<Eigen::Vector3d> points;
@@ -61,6 +69,6 @@ struct VtkMesh {
 // Writes `mesh` to `path`. Throws OutputError (io/output_file.h) naming
 // `output` if the file cannot be opened (kOpen) or written (kWrite).
 void WriteVtu(const VtkMesh& mesh, const std::string& path, const std::string& output,
-              VtkEncoding encoding);
+              VtkEncoding encoding, VtkPrecision precision = VtkPrecision::kFloat64);
 
 }  // namespace ipstep

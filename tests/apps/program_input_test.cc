@@ -74,6 +74,7 @@ TEST_F(ProgramInput, BadFlags) {
   ExpectInputError("--max_iterations=-1", "flag", "--max_iterations");
   ExpectInputError("--frame_every=0", "flag", "--frame_every");
   ExpectInputError("--frames_format=binary", "flag", "--frames_format");
+  ExpectInputError("--frames_precision=double", "flag", "--frames_precision");
   ExpectInputError("--grid_size=50", "flag", "--grid_size");  // oscillator has no grid
   ExpectInputError("--stats=/nonexistent_dir/x.csv", "flag", "--stats");
   ExpectInputError("stray_argument", "command line", "stray_argument");

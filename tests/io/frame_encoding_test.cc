@@ -1,9 +1,11 @@
 // The frames' encodings and a 3D solid's frames (io/frame_writer.h,
 // io/vtk_unstructured_grid.h, io/element_fields.h, io/pvd_series.h): ASCII,
-// raw and zlib hold the same numbers; raw's appended data is laid out as VTK
+// raw and zlib hold the same numbers; Float32 frames agree with Float64 ones
+// to float's precision; raw's appended data is laid out as VTK
 // reads it; a 3D solid is written as tetrahedra with its per-element fields
 // and its boundary as part 2; the per-element fields are exact on a uniform
 // stretch; times are printed in their shortest round-trip form.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +33,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ipstep::VtkEncoding;
+using ipstep::VtkPrecision;
 using ipstep::testing::VtuArrays;
 
 std::string ReadFile(const fs::path& path) {
@@ -42,15 +45,17 @@ std::string ReadFile(const fs::path& path) {
 
 class FrameEncoding : public ipstep::testing::ProgramTest {
  protected:
-  // Writes frames 0..steps of `scene` to DIR/<encoding name>.
-  void Run(const std::string& name, int steps, VtkEncoding encoding) {
+  // Writes frames 0..steps of `scene` to Dir(encoding, precision).
+  void Run(const std::string& name, int steps, VtkEncoding encoding,
+           VtkPrecision precision = VtkPrecision::kFloat64) {
     ipstep::SceneLoadOptions load;
     load.extra_effects = ipstep::DefaultEffects().UserNames();
     scene_ = ipstep::LoadScene(name, load);
     ipstep::SimulationOptions options;
     options.steps = steps;
     ipstep::Simulation sim(scene_, options);
-    ipstep::FrameWriter frames(Dir(encoding).string(), sim, "frames", encoding);
+    ipstep::FrameWriter frames(Dir(encoding, precision).string(), sim, "frames", encoding,
+                               precision);
     frames.Write(0);
     for (int step = 1; step <= steps; ++step) {
       ASSERT_TRUE(sim.Step().converged);
@@ -58,7 +63,11 @@ class FrameEncoding : public ipstep::testing::ProgramTest {
     }
     x_ = sim.state().x;
   }
-  fs::path Dir(VtkEncoding encoding) const { return dir_ / ipstep::VtkEncodingName(encoding); }
+  // DIR/<encoding name>, DIR/<encoding name>_float32 for Float32.
+  fs::path Dir(VtkEncoding encoding, VtkPrecision precision = VtkPrecision::kFloat64) const {
+    return dir_ / (std::string(ipstep::VtkEncodingName(encoding)) +
+                   (precision == VtkPrecision::kFloat32 ? "_float32" : ""));
+  }
 
   ipstep::Scene scene_;
   Eigen::VectorXd x_;
@@ -90,6 +99,36 @@ TEST_F(FrameEncoding, AsciiRawAndZlibHoldTheSameNumbers) {
             ReadFile(Dir(VtkEncoding::kZlib) / "run.pvd"));
 }
 
+// Float32 (the app's default): the points and fields are Float32 arrays whose
+// values are the Float64 ones rounded to float (within 1e-6 of each array's
+// largest value); ASCII Float32 text reads back to the same floats as zlib's.
+TEST_F(FrameEncoding, Float32FramesAreFloat64RoundedToFloat) {
+  Run("ball_drop_3d", 2, VtkEncoding::kZlib);
+  Run("ball_drop_3d", 2, VtkEncoding::kZlib, VtkPrecision::kFloat32);
+  Run("ball_drop_3d", 2, VtkEncoding::kAscii, VtkPrecision::kFloat32);
+  for (const char* file : {"frame_00002.vtu", "surface_00002.vtu"}) {
+    const std::string text = ReadFile(Dir(VtkEncoding::kZlib, VtkPrecision::kFloat32) / file);
+    EXPECT_EQ(text.find("Float64"), std::string::npos) << file;
+    EXPECT_NE(text.find("<DataArray type=\"Float32\" Name=\"J\""), std::string::npos) << file;
+    const VtuArrays exact(ReadFile(Dir(VtkEncoding::kZlib) / file));
+    const VtuArrays zlib(text);
+    const VtuArrays ascii(ReadFile(Dir(VtkEncoding::kAscii, VtkPrecision::kFloat32) / file));
+    for (const char* name : kArrays) {
+      const std::vector<double> e = exact.Values(name), z = zlib.Values(name),
+                                a = ascii.Values(name);
+      ASSERT_EQ(z.size(), e.size()) << file << " " << name;
+      ASSERT_EQ(a.size(), e.size()) << file << " " << name;
+      double largest = 0.0;
+      for (double v : e) largest = std::max(largest, std::abs(v));
+      for (size_t i = 0; i < e.size(); ++i) {
+        EXPECT_EQ(z[i], static_cast<double>(static_cast<float>(e[i]))) << file << " " << name;
+        EXPECT_LE(std::abs(z[i] - e[i]), 1e-6 * largest) << file << " " << name;
+        EXPECT_EQ(static_cast<float>(a[i]), static_cast<float>(z[i])) << file << " " << name;
+      }
+    }
+  }
+}
+
 // Raw appended data: after '_', per array in the order of the offsets, a
 // UInt64 byte count (the values' count times their size) and the bytes; the
 // next array starts right after.
@@ -105,7 +144,9 @@ TEST_F(FrameEncoding, RawAppendedDataIsCountThenBytes) {
        m != std::sregex_iterator(); ++m, ++arrays_seen) {
     const size_t offset = std::stoul((*m)[2]);
     EXPECT_EQ(offset, expected_offset) << (*m)[0];
-    const size_t size = (*m)[1] == "Float64" ? 8 : (*m)[1] == "Int32" ? 4 : 1;
+    const size_t size = (*m)[1] == "Float64"                         ? 8
+                        : (*m)[1] == "Int32" || (*m)[1] == "Float32" ? 4
+                                                                     : 1;
     const std::uint64_t bytes = arrays.Header(offset);
     EXPECT_EQ(bytes % size, 0u);
     expected_offset = offset + 8 + bytes;

@@ -7,7 +7,10 @@
 # von_mises_stress and point data velocity, contact_force; each tetrahedron's
 # volume is J times its volume at rest; part 1 is the ground; part 2 the
 # boundary, a closed triangulated sphere (V - F/2 = 2); zlib, raw and ascii
-# read back to the same numbers; tools/render_frames.py rejects a missing
+# read back to the same numbers (with --frames_precision=float64); the
+# default float32 frames, zlib and ascii, have Float32 points and fields that
+# agree with the float64 ones to 1e-6 of each array's largest value and with
+# each other exactly; tools/render_frames.py rejects a missing
 # directory with exit code 2. Exit code 77 (skipped) without an
 # interpreter that has VTK's Python modules.
 #   vtk_reader_test.sh IPSTEP WORK_DIR
@@ -28,7 +31,11 @@ rm -rf "$work"
 mkdir -p "$work"
 for format in zlib raw ascii; do
   "$ipstep" --scene=ball_drop_3d --steps=3 --frames="$work/$format" --frames_format=$format \
-    --stats="$work/stats.csv" > /dev/null
+    --frames_precision=float64 --stats="$work/stats.csv" > /dev/null
+  if [ $format != raw ]; then
+    "$ipstep" --scene=ball_drop_3d --steps=3 --frames="$work/${format}32" --frames_format=$format \
+      > /dev/null
+  fi
 done
 "$python" - "$work" << 'PY'
 import csv, os, sys
@@ -100,7 +107,33 @@ for format in ("raw", "ascii"):
             assert np.array_equal(cell[name], cell_z[name]), (format, name)
         for name in point:
             assert np.array_equal(point[name], point_z[name]), (format, name)
-print(f"{len(times)} frames in zlib, raw and ascii read by VTK: tetrahedra, J, energy_density, "
+# The default precision, float32: the same frames' files, Float32 arrays.
+for format in ("zlib32", "ascii32"):
+    directory = os.path.join(work, format)
+    files = [d.get("file") for d in ET.parse(os.path.join(directory, "run.pvd")).getroot().iter("DataSet")]
+    exact = os.path.join(work, "zlib")
+    for name in files:
+        grid, grid64 = read(os.path.join(directory, name)), read(os.path.join(exact, name))
+        data = {"points": vtk_to_numpy(grid.GetPoints().GetData())}
+        data64 = {"points": vtk_to_numpy(grid64.GetPoints().GetData())}
+        for get in ("GetPointData", "GetCellData"):
+            data.update(arrays(getattr(grid, get)()))
+            data64.update(arrays(getattr(grid64, get)()))
+        assert sorted(data) == sorted(data64), (name, sorted(data), sorted(data64))
+        for key, values in data.items():
+            if values.dtype.kind in "iu":  # kind, obstacle
+                assert np.array_equal(values, data64[key]), (name, key)
+                continue
+            assert values.dtype == np.float32, (name, key, values.dtype)
+            scale = max(abs(data64[key]).max(), 1e-300)
+            error = abs(values.astype(np.float64) - data64[key]).max() / scale
+            assert error <= 1e-6, (name, key, error)
+            if format == "ascii32":
+                other = read(os.path.join(work, "zlib32", name))
+                assert np.array_equal(values, {"points": vtk_to_numpy(other.GetPoints().GetData()),
+                                               **arrays(other.GetPointData()),
+                                               **arrays(other.GetCellData())}[key]), (name, key)
+print(f"{len(times)} frames in zlib, raw and ascii (float64) and zlib, ascii (float32) read by VTK: tetrahedra, J, energy_density, "
       "von_mises_stress, velocity, contact_force, surface, times")
 PY
 # tools/render_frames.py (ParaView, not needed here): bad input is exit code 2

@@ -86,6 +86,7 @@ class VtuArrays {
   }
   static std::vector<double> Decode(const std::string& type, const std::string& bytes) {
     if (type == "Float64") return As<double>(bytes);
+    if (type == "Float32") return As<float>(bytes);
     if (type == "Int32") return As<std::int32_t>(bytes);
     if (type == "UInt8") return As<std::uint8_t>(bytes);
     throw std::runtime_error("unexpected DataArray type " + type);
