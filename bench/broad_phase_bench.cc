@@ -1,6 +1,6 @@
 // Broad phase of 3D self-contact on an n x n cloth folded on itself
 // (tests/support/cloth_meshes.h): candidate pairs and build + query time of the BVH
-// (contact/bvh.h) and of the spatial hash (contact/spatial_hash.h, cell size
+// (geometry/bvh.h) and of the spatial hash (geometry/spatial_hash.h, cell size
 // the mean edge length, as the 2D self-contact uses), for point-triangle
 // (faces in the structure, nodes as queries) and edge-edge (edges both). The
 // boxes are grown by d_hat. Not a test: timings are printed, nothing checked
@@ -15,11 +15,11 @@
 #include <cstdlib>
 #include <vector>
 
-#include "contact/bvh.h"
 #include "contact/pairs/self_contact_mesh.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
-#include "contact/spatial_hash.h"
+#include "geometry/bvh.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
+#include "geometry/spatial_hash.h"
 #include "tests/support/cloth_meshes.h"
 
 namespace {

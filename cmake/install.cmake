@@ -16,7 +16,7 @@ if(TARGET ipstep_bench_lib)  # ipstep::bench (bench/bench_program.h: RunBench)
   install(FILES ${PROJECT_SOURCE_DIR}/bench/bench_program.h ${PROJECT_SOURCE_DIR}/bench/bench_runner.h
           DESTINATION include/ipstep/bench)
 endif()
-foreach(dir apps contact core energies integrators mesh problems sim solver io)
+foreach(dir apps contact core energies geometry integrators mesh problems sim solver io)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION include/ipstep/${dir}
     FILES_MATCHING PATTERN "*.h")
 endforeach()

@@ -2,7 +2,7 @@
 
 #include "contact/distance_hessian.h"
 #include "contact/friction.h"
-#include "contact/point_edge.h"
+#include "geometry/point_edge.h"
 
 namespace ipstep {
 

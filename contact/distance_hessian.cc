@@ -2,10 +2,10 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "contact/point_edge.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_parameter.h"
-#include "contact/segment_segment.h"
+#include "geometry/point_edge.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_parameter.h"
+#include "geometry/segment_segment.h"
 
 namespace ipstep {
 namespace {

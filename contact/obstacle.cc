@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "contact/segment_parameter.h"
+#include "geometry/segment_parameter.h"
 
 namespace ipstep {
 

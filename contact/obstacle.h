@@ -13,7 +13,7 @@
 // moving linearly while the obstacle translates linearly moves linearly
 // relative to it, and the closed forms of the shapes apply; with rotation the
 // relative path is curved, and every time of impact is found by conservative
-// advancement (contact/conservative_advancement.h) with the bound of
+// advancement (geometry/conservative_advancement.h) with the bound of
 // RestPathBound. The motion is smooth on either side of the stop time, so a
 // time interval [t_a, t_b] passed to the impact queries must not contain it in
 // its interior (contact/obstacle_time.h splits there).
@@ -29,8 +29,8 @@
 
 #include <Eigen/Core>
 
-#include "contact/conservative_advancement.h"
 #include "core/prescribed_motion.h"
+#include "geometry/conservative_advancement.h"
 
 namespace ipstep {
 
@@ -195,7 +195,7 @@ class Obstacle {
   }
   // R of the features (edge and face): the sphere's radius, 0 for box corners.
   virtual double FeatureRadius() const { return 0.0; }
-  // d = |c - closest point of the triangle| - R (contact/point_triangle.h);
+  // d = |c - closest point of the triangle| - R (geometry/point_triangle.h);
   // gradients with respect to the vertices (w_i n) into grad[0..2] and the
   // closest point's barycentric weights when not null.
   double FaceDistance(int feature, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -222,7 +222,7 @@ class Obstacle {
 
   // 3D box edges (12; edge k is parallel to axis k / 4, at the lower or upper
   // bound of the next axis (bit 0 of k % 4) and of the one after (bit 1)),
-  // against contact edges (segment-segment, contact/segment_segment.h). Other
+  // against contact edges (segment-segment, geometry/segment_segment.h). Other
   // shapes have none.
   virtual int NumBoxEdges() const { return 0; }
   // End points (lower and upper in the edge's axis) at time t.

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "contact/conservative_advancement.h"
 #include "contact/obstacle.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
+#include "geometry/conservative_advancement.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
 
 namespace ipstep {
 

@@ -7,10 +7,10 @@
 
 #include "contact/barrier.h"
 #include "contact/distance_hessian.h"
-#include "contact/edge_edge_mollifier.h"
 #include "contact/friction.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
+#include "geometry/edge_edge_mollifier.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
 
 namespace ipstep {
 

@@ -2,12 +2,12 @@
 // edge_edge_pairs.h): four moving nodes, one parameter block of 3 each.
 //
 // PointTriangleGap: residual u = max(d_hat - d, 0), d the point-triangle
-// distance (contact/point_triangle.h), with the BarrierLoss
+// distance (geometry/point_triangle.h), with the BarrierLoss
 // (contact/barrier.h) like every other gap term (contact/contact_terms.h):
 // 1/2 rho(u^2) = kappa w B(d). Curvature: -c0 Hess d
 // (PointTriangleDistanceHessian, contact/distance_hessian.h).
 //
-// EdgeEdgeGap: the mollified barrier m(x) B(d(x)) (contact/edge_edge_mollifier.h)
+// EdgeEdgeGap: the mollified barrier m(x) B(d(x)) (geometry/edge_edge_mollifier.h)
 // in the same residual/loss form. Why not another form:
 //  * the loss sees only s = |r|^2, so it cannot carry m (which depends on x
 //    apart from d);

@@ -6,12 +6,12 @@
 #include <sstream>
 
 #include "contact/barrier.h"
-#include "contact/edge_edge_mollifier.h"
 #include "contact/friction.h"
-#include "contact/segment_segment.h"
-#include "contact/self_ccd.h"
 #include "contact/self_gap_terms.h"
 #include "core/scoped_timer.h"
+#include "geometry/edge_edge_mollifier.h"
+#include "geometry/segment_segment.h"
+#include "geometry/self_ccd.h"
 
 namespace ipstep {
 

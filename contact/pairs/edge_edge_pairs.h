@@ -4,14 +4,14 @@
 // (edges alone, a wire mesh, would work the same; the scene's surface decides).
 //
 // Barrier: EdgeEdgeGap (contact/self_gap_terms.h), IPC's mollified barrier
-// m(c) B(d) for nearly parallel edges (contact/edge_edge_mollifier.h) as an
+// m(c) B(d) for nearly parallel edges (geometry/edge_edge_mollifier.h) as an
 // effective gap with the BarrierLoss; weight the first edge's weight (pairs
 // are stored with e < f; both edges of a grid have the same weight). The
 // mollifier's threshold uses the rest lengths: the positions given to the
 // constructor or SetRestPositions (the filter passes the scene's initial
 // positions), or else those of the first Extend.
 // Candidates, time of impact, checks: as PointTrianglePairs (additive CCD of
-// the segment-segment distance, contact/self_ccd.h). Friction: the relative
+// the segment-segment distance, geometry/self_ccd.h). Friction: the relative
 // velocity of the closest points (1 - s) a0 + s a1 - (1 - t) b0 - t b1 at the
 // lagged (s, t), normal force kappa w (-m B'(d)).
 #pragma once

@@ -7,7 +7,7 @@
 
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
-#include "contact/point_edge.h"
+#include "geometry/point_edge.h"
 
 namespace ipstep {
 

@@ -14,7 +14,7 @@
 
 #include "contact/barrier.h"
 #include "contact/pairs/mesh_obstacle_pairs.h"
-#include "contact/tangent_basis.h"
+#include "geometry/tangent_basis.h"
 
 namespace ipstep {
 

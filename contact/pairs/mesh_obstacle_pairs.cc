@@ -11,7 +11,7 @@
 
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
-#include "contact/point_triangle.h"
+#include "geometry/point_triangle.h"
 
 namespace ipstep {
 

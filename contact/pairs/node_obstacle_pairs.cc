@@ -8,7 +8,7 @@
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
 #include "contact/friction.h"
-#include "contact/tangent_basis.h"
+#include "geometry/tangent_basis.h"
 
 namespace ipstep {
 

@@ -8,7 +8,7 @@
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
 #include "contact/friction.h"
-#include "contact/point_edge.h"
+#include "geometry/point_edge.h"
 
 namespace ipstep {
 

@@ -1,6 +1,6 @@
 // Pair kind (2D self-contact): a boundary node against a boundary edge of
-// another part of the boundary (contact/point_edge.h). Candidates from a
-// spatial hash of the edges' boxes (contact/spatial_hash.h); barrier gap
+// another part of the boundary (geometry/point_edge.h). Candidates from a
+// spatial hash of the edges' boxes (geometry/spatial_hash.h); barrier gap
 // PointEdgeGap (contact/contact_terms.h), weight: the node's; friction: the
 // node's velocity relative to the edge's closest point along the lagged edge
 // tangent. The intersection check also tests every two boundary edges that
@@ -14,7 +14,7 @@
 
 #include "contact/pair_set.h"
 #include "contact/sorted_pairs.h"
-#include "contact/spatial_hash.h"
+#include "geometry/spatial_hash.h"
 
 namespace ipstep {
 

@@ -8,11 +8,11 @@
 
 #include "contact/barrier.h"
 #include "contact/friction.h"
-#include "contact/point_triangle.h"
-#include "contact/self_ccd.h"
 #include "contact/self_gap_terms.h"
-#include "contact/triangle_intersection.h"
 #include "core/scoped_timer.h"
+#include "geometry/point_triangle.h"
+#include "geometry/self_ccd.h"
+#include "geometry/triangle_intersection.h"
 
 namespace ipstep {
 

@@ -6,12 +6,12 @@
 // Barrier: PointTriangleGap (contact/self_gap_terms.h) with the BarrierLoss,
 // weight the node's (its area share), analytic curvature. Candidates: the
 // faces' boxes over the motion grown by d_hat + max_reach overlap the node's
-// box (BVH, contact/bvh.h), then the exact distance at the start, minus how
+// box (BVH, geometry/bvh.h), then the exact distance at the start, minus how
 // far the primitives move, below d_hat + the pair's reach. Time of impact:
-// additive conservative advancement (contact/self_ccd.h) of every pair whose
+// additive conservative advancement (geometry/self_ccd.h) of every pair whose
 // boxes grown by the margin overlap. FindPenetration: distances at most the
 // margin, and (independently of the distances) any two faces without a
-// common node that intersect (contact/triangle_intersection.h). Friction:
+// common node that intersect (geometry/triangle_intersection.h). Friction:
 // lagged normal force kappa w (-B'(d)), tangent basis of the closest points'
 // direction, relative velocity of the node and its closest point on the
 // face at the lagged barycentric weights (SelfFriction).

@@ -1,7 +1,7 @@
 // What the two 3D self-contact pair kinds (point_triangle_pairs.h,
 // edge_edge_pairs.h) share: node positions, node slots (the collision mesh's
 // table, NodeSlot), the boxes of primitives over a linear motion and the
-// broad phase (contact/bvh.h) that pairs them, the tangent basis of a contact
+// broad phase (geometry/bvh.h) that pairs them, the tangent basis of a contact
 // normal.
 //
 // Broad phase: the BVH was measured faster than the spatial hash on a folded
@@ -17,8 +17,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "contact/bvh.h"
 #include "contact/collision_mesh.h"
+#include "geometry/bvh.h"
 
 namespace ipstep {
 

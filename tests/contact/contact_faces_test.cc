@@ -15,9 +15,9 @@
 #include "contact/obstacle.h"
 #include "contact/obstacles/box_obstacle.h"
 #include "contact/obstacles/sphere_obstacle.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
 #include "core/input_error.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
 #include "problems/scene_loader.h"
 #include "tests/support/finite_differences.h"
 

@@ -16,8 +16,8 @@
 #include "contact/obstacles/box_obstacle.h"
 #include "contact/obstacles/plane_obstacle.h"
 #include "contact/obstacles/sphere_obstacle.h"
-#include "contact/point_edge.h"
-#include "contact/spatial_hash.h"
+#include "geometry/point_edge.h"
+#include "geometry/spatial_hash.h"
 #include "tests/support/finite_differences.h"
 
 namespace ipstep {

@@ -15,10 +15,10 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/contact_filter.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
 #include "sim/simulation.h"

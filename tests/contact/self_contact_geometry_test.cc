@@ -1,6 +1,6 @@
 // 3D self-contact geometry (contact/distance_hessian.h all-moving cases,
-// contact/edge_edge_mollifier.h, contact/self_gap_terms.h, contact/self_ccd.h,
-// contact/triangle_intersection.h, contact/bvh.h) against exact references:
+// geometry/edge_edge_mollifier.h, contact/self_gap_terms.h, geometry/self_ccd.h,
+// geometry/triangle_intersection.h, geometry/bvh.h) against exact references:
 // central differences of analytic gradients region by region, the barrier
 // formula through ceres::Problem::Evaluate, known impact times, brute force.
 #include <algorithm>
@@ -16,17 +16,17 @@
 #include <Eigen/Geometry>
 
 #include "contact/barrier.h"
-#include "contact/bvh.h"
 #include "contact/distance_hessian.h"
-#include "contact/edge_edge_mollifier.h"
-#include "contact/exact_orientation.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
-#include "contact/self_ccd.h"
 #include "contact/self_gap_terms.h"
-#include "contact/spatial_hash.h"
-#include "contact/triangle_intersection.h"
 #include "core/term_hessian.h"
+#include "geometry/bvh.h"
+#include "geometry/edge_edge_mollifier.h"
+#include "geometry/exact_orientation.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
+#include "geometry/self_ccd.h"
+#include "geometry/spatial_hash.h"
+#include "geometry/triangle_intersection.h"
 
 namespace ipstep {
 namespace {

@@ -12,13 +12,13 @@
 #include <gtest/gtest.h>
 
 #include "contact/barrier.h"
-#include "contact/edge_edge_mollifier.h"
 #include "contact/friction.h"
 #include "contact/pairs/edge_edge_pairs.h"
 #include "contact/pairs/point_triangle_pairs.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
 #include "core/incremental_potential.h"
+#include "geometry/edge_edge_mollifier.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
 #include "tests/support/cloth_meshes.h"
 
 namespace ipstep {

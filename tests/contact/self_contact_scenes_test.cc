@@ -5,7 +5,7 @@
 // its 5 ms the trapezoidal rule is not energy-stable on the stiff strip,
 // docs/self_contact.md).
 // After every step, independently of the contact filter: no two faces without
-// a common node intersect (exact predicates, contact/triangle_intersection.h)
+// a common node intersect (exact predicates, geometry/triangle_intersection.h)
 // and every non-incident point-triangle and edge-edge distance is positive.
 // Also that self-contact happened (pairs within d_hat on some step; not in
 // cloth_pinch, whose loop never closes within its 400 steps). Prints
@@ -22,13 +22,13 @@
 
 #include <gtest/gtest.h>
 
-#include "contact/bvh.h"
 #include "contact/collision_mesh.h"
 #include "contact/pairs/self_contact_mesh.h"
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
-#include "contact/triangle_intersection.h"
 #include "energies/effect_registry.h"
+#include "geometry/bvh.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
+#include "geometry/triangle_intersection.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
 #include "sim/simulation.h"

@@ -1,4 +1,4 @@
-#include "contact/point_edge.h"
+#include "geometry/point_edge.h"
 
 #include <algorithm>
 #include <array>

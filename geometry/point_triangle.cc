@@ -1,4 +1,4 @@
-#include "contact/point_triangle.h"
+#include "geometry/point_triangle.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "contact/segment_parameter.h"
+#include "geometry/segment_parameter.h"
 
 namespace ipstep {
 

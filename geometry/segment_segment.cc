@@ -1,9 +1,9 @@
-#include "contact/segment_segment.h"
+#include "geometry/segment_segment.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "contact/segment_parameter.h"
+#include "geometry/segment_parameter.h"
 
 namespace ipstep {
 

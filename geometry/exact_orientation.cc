@@ -1,4 +1,4 @@
-#include "contact/exact_orientation.h"
+#include "geometry/exact_orientation.h"
 
 #include <cmath>
 #include <vector>

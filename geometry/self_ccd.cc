@@ -1,9 +1,9 @@
-#include "contact/self_ccd.h"
+#include "geometry/self_ccd.h"
 
 #include <algorithm>
 
-#include "contact/point_triangle.h"
-#include "contact/segment_segment.h"
+#include "geometry/point_triangle.h"
+#include "geometry/segment_segment.h"
 
 namespace ipstep {
 

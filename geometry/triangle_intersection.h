@@ -5,7 +5,7 @@
 //
 // orient(a, b, c, d) = (a - d) . ((b - d) x (c - d)): positive when d is below
 // the plane of (a, b, c) oriented counter-clockwise, zero when coplanar.
-// Signs are exact for the double inputs (contact/exact_orientation.h: a
+// Signs are exact for the double inputs (geometry/exact_orientation.h: a
 // filtered double evaluation, exact expansion arithmetic when it is not
 // certain), so the tests below are exact, degenerate (coplanar, touching)
 // configurations included.

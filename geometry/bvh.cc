@@ -1,4 +1,4 @@
-#include "contact/bvh.h"
+#include "geometry/bvh.h"
 
 #include <algorithm>
 

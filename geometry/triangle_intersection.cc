@@ -1,11 +1,11 @@
-#include "contact/triangle_intersection.h"
+#include "geometry/triangle_intersection.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-#include "contact/exact_orientation.h"
+#include "geometry/exact_orientation.h"
 
 namespace ipstep {
 

@@ -1,4 +1,4 @@
-#include "contact/spatial_hash.h"
+#include "geometry/spatial_hash.h"
 
 #include <algorithm>
 #include <cmath>

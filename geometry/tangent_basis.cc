@@ -1,4 +1,4 @@
-#include "contact/tangent_basis.h"
+#include "geometry/tangent_basis.h"
 
 #include <cmath>
 

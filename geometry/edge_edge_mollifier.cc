@@ -1,4 +1,4 @@
-#include "contact/edge_edge_mollifier.h"
+#include "geometry/edge_edge_mollifier.h"
 
 #include <algorithm>
 
