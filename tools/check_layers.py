@@ -2,8 +2,8 @@
 """Checks that every #include "folder/..." in the project goes down the layer
 order (the same order as the libraries in CMakeLists.txt):
 
-  core -> mesh -> problems -> solver, integrators -> energies -> contact -> sim -> io
-       -> apps, bench, tests, examples
+  core -> geometry -> mesh -> problems -> solver, integrators -> energies -> contact
+       -> sim -> io -> apps, bench, tests, examples
 
 A folder may include its own headers and those of the folders it is allowed
 below. Exit 1 with one line per upward include, 0 if there is none.
@@ -15,14 +15,17 @@ import sys
 
 ALLOWED = {
     "core": {"core"},
-    "mesh": {"core", "mesh"},
-    "problems": {"core", "mesh", "problems"},
-    "solver": {"core", "solver"},
-    "integrators": {"core", "integrators"},
-    "energies": {"core", "mesh", "problems", "energies"},
-    "contact": {"core", "mesh", "problems", "energies", "contact"},
-    "sim": {"core", "mesh", "problems", "energies", "contact", "solver", "integrators", "sim"},
-    "io": {"core", "mesh", "problems", "energies", "contact", "solver", "integrators", "sim", "io"},
+    "geometry": {"core", "geometry"},
+    "mesh": {"core", "geometry", "mesh"},
+    "problems": {"core", "geometry", "mesh", "problems"},
+    "solver": {"core", "geometry", "solver"},
+    "integrators": {"core", "geometry", "integrators"},
+    "energies": {"core", "geometry", "mesh", "problems", "energies"},
+    "contact": {"core", "geometry", "mesh", "problems", "energies", "contact"},
+    "sim": {"core", "geometry", "mesh", "problems", "energies", "contact", "solver", "integrators",
+            "sim"},
+    "io": {"core", "geometry", "mesh", "problems", "energies", "contact", "solver", "integrators",
+           "sim", "io"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
 
