@@ -297,6 +297,9 @@ void BindSimulation(py::module_& m) {
                                  : options.steps >= 0 ? dt * options.steps
                                                       : dt * loaded->steps;
                adaptive->initial_time_step = dt;
+               // The steps follow from the error: t_end need not be a whole
+               // number of dt (as ipstep --adaptive --t_end).
+               options.t_end = 0.0;
                const bool tolerance_given =
                    keywords.contains("tolerance") && !keywords["tolerance"].is_none();
                ConfigureAdaptiveSimulation(*adaptive, tolerance_given, &options);

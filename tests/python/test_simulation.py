@@ -160,7 +160,8 @@ def test_bad_adaptive_options_raise_value_error(options, message):
     assert str(error.value).startswith(message), str(error.value)
 
 
-def test_an_adaptive_run_takes_no_steps_count():
-    sim = ipstep.Simulation("oscillator", adaptive=True, error_tolerance=1e-3)
+def test_an_adaptive_run_takes_no_steps_count_and_any_end_time():
+    sim = ipstep.Simulation("oscillator", adaptive=True, error_tolerance=1e-3, t_end=1.2345)
+    assert sim.run().termination == "completed" and sim.time == pytest.approx(1.2345)
     with pytest.raises(ValueError, match="give no steps"):
         sim.run(5)
