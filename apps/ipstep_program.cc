@@ -33,6 +33,7 @@
 #include "problems/solid.h"
 #include "sim/run_trajectory.h"
 #include "sim/simulation.h"
+#include "sim/simulation_option_table.h"
 #include "sim/step_size_controller.h"
 
 DEFINE_string(on_failure, "stop",
@@ -135,26 +136,21 @@ int Run(const EffectRegistry& registry) {
     }
     options.t_end = 0.0;  // the steps follow from the error, not from dt
     adaptive.initial_time_step = dt;
-    adaptive.error_tolerance = CheckFlagRange("error_tolerance", FLAGS_error_tolerance, 0.0, 1e6,
-                                              "m", "", /*min_open=*/true);
-    if (!FlagIsDefault("min_dt")) {
-      adaptive.min_time_step = CheckFlagRange("min_dt", FLAGS_min_dt, limits::kMinTimeStep,
-                                              limits::kMaxTimeStep, "s", "");
-    }
-    if (!FlagIsDefault("max_dt")) {
-      adaptive.max_time_step = CheckFlagRange("max_dt", FLAGS_max_dt, limits::kMinTimeStep,
-                                              limits::kMaxTimeStep, "s", "");
-    }
-    // The solve's tolerance follows the error budget unless --tolerance says.
-    if (FlagIsDefault("tolerance")) {
-      options.optimizer.tolerance = AdaptiveSolverTolerance(adaptive);
-    }
-    options.accept_residual = AdaptiveStallResidual(adaptive);
-    options.max_substeps = 1;  // the controller retries failed steps
+    // The ranges of AdaptiveOptionTable (sim/simulation_option_table.h).
+    const auto checked = [](const char* name, double value) {
+      const OptionRow<AdaptiveOptions>& row = *FindOption(AdaptiveOptionTable(), name);
+      return CheckFlagRange(row.flag.c_str(), value, row.min, row.max, row.unit.c_str(), "",
+                            row.min_open);
+    };
+    adaptive.error_tolerance = checked("error_tolerance", FLAGS_error_tolerance);
+    if (!FlagIsDefault("min_dt")) adaptive.min_time_step = checked("min_time_step", FLAGS_min_dt);
+    if (!FlagIsDefault("max_dt")) adaptive.max_time_step = checked("max_time_step", FLAGS_max_dt);
     if (!FlagIsDefault("max_substeps")) {
       throw InputError("flag", "--max_substeps",
                        "an --adaptive run retries failed steps smaller itself");
     }
+    // The solve's tolerance follows the error budget unless --tolerance says.
+    ConfigureAdaptiveSimulation(adaptive, /*keep_tolerance=*/!FlagIsDefault("tolerance"), &options);
   } else {
     for (const char* flag : {"error_tolerance", "min_dt", "max_dt"}) {
       if (!FlagIsDefault(flag)) {

@@ -11,6 +11,7 @@
 #include "energies/effect_registry.h"
 #include "problems/scene.h"
 #include "problems/scene_loader.h"
+#include "python/ipstep_module.h"
 #include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 
@@ -22,10 +23,7 @@ namespace py = pybind11;
 // OutputError -> OSError.
 void BindErrors(py::module_& m);
 
-// registry.cc: the module's effect registry, a copy of the default one
-// (sim/default_effects.h) that register_energy adds to. Scenes are loaded and
-// simulations built with it.
-EffectRegistry& Effects();
+// registry.cc: Effects() (python/ipstep_module.h).
 
 // scenes.cc: Scene, load_scene, builtin_scenes.
 void BindScenes(py::module_& m);

@@ -1,9 +1,12 @@
+#include <optional>
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include "python/bindings.h"
 #include "python/interrupt.h"
 #include "sim/run_trajectory.h"
+#include "sim/simulation_option_table.h"
 
 namespace ipstep::python {
 namespace {
@@ -56,11 +59,16 @@ py::array_t<double> Nodes(const Eigen::VectorXd& values, int dimension) {
 
 class PySimulation {
  public:
-  PySimulation(std::shared_ptr<const Scene> scene, const SimulationOptions& options)
-      : scene_(std::move(scene)) {
+  // `adaptive`: run() takes error-controlled steps to adaptive->t_end (from
+  // the start); null: the simulation's fixed steps.
+  PySimulation(std::shared_ptr<const Scene> scene, const SimulationOptions& options,
+               std::optional<AdaptiveOptions> adaptive)
+      : scene_(std::move(scene)), adaptive_(std::move(adaptive)) {
     py::gil_scoped_release release;
     sim_ = std::make_unique<Simulation>(*scene_, options);
+    start_time_ = sim_->state().time;
   }
+  bool adaptive() const { return adaptive_.has_value(); }
   Simulation& sim() { return *sim_; }
   const Simulation& sim() const { return *sim_; }
 
@@ -78,6 +86,22 @@ class PySimulation {
   RunSummary Run(const py::object& steps, const py::object& on_step, const py::kwargs& keywords) {
     RunOptions options = RunOptionsFrom(keywords);
     if (!steps.is_none()) options.steps = steps.cast<int>();
+    if (adaptive_) {
+      if (!steps.is_none()) {
+        throw py::value_error(
+            "Simulation.run: an adaptive simulation's steps follow from its error_tolerance; "
+            "give no steps (it runs to its end time)");
+      }
+      // The rest of the way to the end time (nothing once there).
+      const double left = start_time_ + adaptive_->t_end - sim_->state().time;
+      if (left > 1e-12 * adaptive_->t_end) {
+        options.adaptive = true;
+        options.adaptive_options = *adaptive_;
+        options.adaptive_options.t_end = left;
+      } else {
+        options.steps = 0;
+      }
+    }
     ValidateRunOptions(*sim_, options);
     PythonInterrupt interrupt;
     options.interrupt = interrupt.flag();
@@ -105,8 +129,45 @@ class PySimulation {
 
  private:
   std::shared_ptr<const Scene> scene_;  // the simulation points into its copy
+  std::optional<AdaptiveOptions> adaptive_;
+  double start_time_ = 0.0;
   std::unique_ptr<Simulation> sim_;
 };
+
+// The adaptive keywords of Simulation(...) (AdaptiveOptionTable and
+// adaptive=True), taken out of `keywords`; null without adaptive=True. The
+// end time is t_end, or steps x dt, or the scene's steps x time_step; the
+// options of the simulation are then set as ipstep --adaptive sets them.
+std::optional<AdaptiveOptions> AdaptiveFrom(py::dict* keywords) {
+  bool adaptive = false;
+  if (keywords->contains("adaptive")) {
+    const py::object value = (*keywords)["adaptive"];
+    if (!value.is_none()) {
+      if (!py::isinstance<py::bool_>(value)) {
+        throw py::value_error("Simulation: adaptive must be True or False");
+      }
+      adaptive = value.cast<bool>();
+    }
+    PyDict_DelItemString(keywords->ptr(), "adaptive");
+  }
+  AdaptiveOptions options;
+  std::vector<std::string> given;
+  for (const auto& row : AdaptiveOptionTable()) {
+    if (!keywords->contains(row.name)) continue;
+    const py::object value = (*keywords)[row.name.c_str()];
+    PyDict_DelItemString(keywords->ptr(), row.name.c_str());
+    if (value.is_none()) continue;
+    SetOption(row, ToOptionValue(row.field, value), &options);
+    given.push_back(row.name);
+  }
+  if (!adaptive) {
+    if (!given.empty()) {
+      throw py::value_error("Simulation: " + given.front() + " applies with adaptive=True only");
+    }
+    return std::nullopt;
+  }
+  return options;
+}
 
 py::dict Energies(const EnergyReport& e) {
   py::dict d;
@@ -177,6 +238,11 @@ void BindSimulation(py::module_& m) {
       .def_readonly("steps_done", &RunSummary::steps_done)
       .def_readonly("failed", &RunSummary::failed)
       .def_readonly("substepped", &RunSummary::substepped)
+      .def_readonly("adaptive", &RunSummary::adaptive)
+      .def_readonly("rejected", &RunSummary::rejected,
+                    "an adaptive run's rejected attempts (error over budget or a failed solve)")
+      .def_readonly("over_budget", &RunSummary::over_budget,
+                    "an adaptive run's steps taken at min_time_step over their error budget")
       .def_readonly("iterations", &RunSummary::iterations)
       .def_readonly("evaluations", &RunSummary::evaluations)
       .def_readonly("max_step_iterations", &RunSummary::max_step_iterations)
@@ -217,14 +283,37 @@ void BindSimulation(py::module_& m) {
              keywords["integrator"] = integrator;
              keywords["optimizer"] = optimizer;
              const std::shared_ptr<const Scene> loaded = SceneArgument(scene, &keywords);
-             const SimulationOptions options = SimulationOptionsFrom(keywords);
-             return std::make_unique<PySimulation>(loaded, options);
+             std::optional<AdaptiveOptions> adaptive = AdaptiveFrom(&keywords);
+             if (adaptive && keywords.contains("max_substeps") &&
+                 !keywords["max_substeps"].is_none()) {
+               throw py::value_error(
+                   "Simulation: an adaptive simulation retries failed steps smaller itself; "
+                   "give no max_substeps");
+             }
+             SimulationOptions options = SimulationOptionsFrom(keywords);
+             if (adaptive) {
+               const double dt = options.time_step > 0.0 ? options.time_step : loaded->time_step;
+               adaptive->t_end = options.t_end > 0.0  ? options.t_end
+                                 : options.steps >= 0 ? dt * options.steps
+                                                      : dt * loaded->steps;
+               adaptive->initial_time_step = dt;
+               // The steps follow from the error: t_end need not be a whole
+               // number of dt (as ipstep --adaptive --t_end).
+               options.t_end = 0.0;
+               const bool tolerance_given =
+                   keywords.contains("tolerance") && !keywords["tolerance"].is_none();
+               ConfigureAdaptiveSimulation(*adaptive, tolerance_given, &options);
+             }
+             return std::make_unique<PySimulation>(loaded, options, std::move(adaptive));
            }),
            py::arg("scene"), py::arg("integrator") = py::none(), py::arg("optimizer") = py::none(),
            py::arg("dt") = py::none(),
            "Simulation(scene, integrator='backward_euler', optimizer='newton', dt=None (the "
            "scene's), **options): scene is a Scene or what load_scene takes; options are the "
-           "library's (ipstep.options()). Bad input raises ValueError.")
+           "library's (ipstep.options()). adaptive=True with error_tolerance=E [m] (and "
+           "min_time_step, max_time_step, safety, max_growth, max_shrink): run() takes "
+           "error-controlled steps to the end time (t_end, steps x dt or the scene's), dt the "
+           "first, as ipstep --adaptive. Bad input raises ValueError.")
       .def("step", &PySimulation::Step,
            "One step of dt (retried as substeps up to max_substeps). A failed step is a status "
            "(StepReport.status), not an exception. The GIL is released while it runs.")
@@ -249,6 +338,8 @@ void BindSimulation(py::module_& m) {
           "the steps planned (steps, t_end or the scene's)")
       .def_property_readonly("steps_taken",
                              [](const PySimulation& s) { return s.sim().steps_taken(); })
+      .def_property_readonly("adaptive", &PySimulation::adaptive,
+                             "run() takes error-controlled steps (Simulation(adaptive=True))")
       .def_property_readonly("integrator",
                              [](const PySimulation& s) { return s.sim().integrator().name(); })
       .def_property_readonly("effects",

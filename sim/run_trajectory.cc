@@ -252,6 +252,14 @@ void RunAdaptive(Simulation& sim, const AdaptiveOptions& adaptive, RunSummary* r
 
 }  // namespace
 
+void ConfigureAdaptiveSimulation(const AdaptiveOptions& adaptive, bool keep_tolerance,
+                                 SimulationOptions* options) {
+  ValidateAdaptiveOptions(adaptive);
+  if (!keep_tolerance) options->optimizer.tolerance = AdaptiveSolverTolerance(adaptive);
+  options->accept_residual = AdaptiveStallResidual(adaptive);
+  options->max_substeps = 1;
+}
+
 void ValidateRunOptions(const Simulation& sim, const RunOptions& options) {
   if (options.steps < -1 || options.steps > limits::kMaxSteps) {
     throw InputError("options", "RunOptions.steps",

@@ -96,6 +96,16 @@ struct RunSummary {
   bool diverged() const { return diverged_at > 0; }
 };
 
+// The simulation options of an adaptive run, set before the simulation is
+// built (the ipstep program's --adaptive, the Python module's adaptive=True):
+// the solve's tolerance from the error budget (AdaptiveSolverTolerance) unless
+// `keep_tolerance` (the user gave one), a stall below the budget accepted
+// (accept_residual = AdaptiveStallResidual), and no substeps (the controller
+// retries failed steps smaller itself). Throws InputError for invalid
+// `adaptive` (ValidateAdaptiveOptions).
+void ConfigureAdaptiveSimulation(const AdaptiveOptions& adaptive, bool keep_tolerance,
+                                 SimulationOptions* options);
+
 // Throws InputError naming the option if `options` cannot run `sim` (out of
 // range; adaptive steps with steps set, invalid AdaptiveOptions or an
 // integrator without time error). RunTrajectory calls it first; a program

@@ -115,6 +115,49 @@ const OptionTable<RunOptions>& RunOptionTable() {
   return table;
 }
 
+const OptionTable<AdaptiveOptions>& AdaptiveOptionTable() {
+  static const OptionTable<AdaptiveOptions> table = [] {
+    using Row = OptionRow<AdaptiveOptions>;
+    const auto own = [](const char* name, const char* flag, double value, const char* doc) {
+      return MakeOptionRow<AdaptiveOptions>(name, std::string("AdaptiveOptions.") + name, flag,
+                                            OptionType::kDouble, value, doc);
+    };
+    OptionTable<AdaptiveOptions> t;
+    Row tolerance = WithRange(own("error_tolerance", "error_tolerance", 0.0,
+                                  "The position error [m] to reach at the end time"),
+                              0.0, 1e6, "m", "none: an adaptive run must give it",
+                              /*min_open=*/true);
+    tolerance.set = SetField(&AdaptiveOptions::error_tolerance);
+    t.push_back(tolerance);
+    Row min_h =
+        WithRange(own("min_time_step", "min_dt", 0.0, "The smallest step [s]"),
+                  limits::kMinTimeStep, limits::kMaxTimeStep, "s", "max(1e-12, 1e-9 t_end)");
+    min_h.set = SetField(&AdaptiveOptions::min_time_step);
+    t.push_back(min_h);
+    Row max_h = WithRange(own("max_time_step", "max_dt", 0.0, "The largest step [s]"),
+                          limits::kMinTimeStep, limits::kMaxTimeStep, "s", "t_end / 10");
+    max_h.set = SetField(&AdaptiveOptions::max_time_step);
+    t.push_back(max_h);
+    Row safety = WithRange(own("safety", "", 0.9, "The controller's safety factor s"), 0.0, 1.0, "",
+                           "", /*min_open=*/true);
+    safety.set = SetField(&AdaptiveOptions::safety);
+    t.push_back(safety);
+    Row growth =
+        WithRange(own("max_growth", "", 2.0, "The largest growth h'/h after an accepted step"), 1.0,
+                  10.0, "");
+    growth.set = SetField(&AdaptiveOptions::max_growth);
+    t.push_back(growth);
+    // (0, 1): a rejection shrinks the step; ValidateAdaptiveOptions refuses 1.
+    Row shrink =
+        WithRange(own("max_shrink", "", 0.2, "The smallest factor h'/h of a rejected step"), 0.0,
+                  1.0, "", "", /*min_open=*/true);
+    shrink.set = SetField(&AdaptiveOptions::max_shrink);
+    t.push_back(shrink);
+    return t;
+  }();
+  return table;
+}
+
 void CheckOptionsApply(const SimulationOptions& options, const std::vector<std::string>& given) {
   for (const std::string& name : given) {
     const Row* row = FindOption(SimulationOptionTable(), name);

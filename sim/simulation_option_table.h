@@ -6,8 +6,11 @@
 //    and IntegratorOptions' and OptimizerOptions' tables
 //    (integrators/integrator_option_table.h, solver/optimizer_option_table.h);
 //  * RunOptionTable(): RunOptions' fields for a run from the library
-//    (sim/run_trajectory.h).
-// Names are unique across both.
+//    (sim/run_trajectory.h);
+//  * AdaptiveOptionTable(): AdaptiveOptions' fields, the error-controlled
+//    steps of an adaptive run (sim/step_size_controller.h), except t_end,
+//    which the programs and the Python module take from the run's end time.
+// Names are unique across the three.
 #pragma once
 
 #include "core/option_table.h"
@@ -18,6 +21,7 @@ namespace ipstep {
 
 const OptionTable<SimulationOptions>& SimulationOptionTable();
 const OptionTable<RunOptions>& RunOptionTable();
+const OptionTable<AdaptiveOptions>& AdaptiveOptionTable();
 
 // Throws InputError naming the field of the first option in `given` (names of
 // SimulationOptionTable()) that does not apply to `options` (an L-BFGS option

@@ -14,7 +14,8 @@ endfunction()
 
 set(scene --scene=${SOURCE}/tethered_square.json)
 run(0 "tether: 25 terms" ${BUILD}/tether_ipstep ${scene} --steps=20 --integrator=newmark
-    --stats=${WORK}/stats.csv --frames=${WORK}/frames --frame_every=10)
+    --stats=${WORK}/stats.csv --frames=${WORK}/frames --frame_every=10
+    --positions=${WORK}/positions.csv)
 if(NOT EXISTS ${WORK}/stats.csv OR NOT EXISTS ${WORK}/frames/run.pvd)
   message(FATAL_ERROR "tether_ipstep wrote no --stats or --frames output")
 endif()
@@ -32,3 +33,20 @@ file(READ ${SOURCE}/tethered_square.json text)
 string(REPLACE "\"stiffness\": 20," "\"stiffness\": -1," text "${text}")
 file(WRITE ${WORK}/bad.json "${text}")
 run(2 "tether.stiffness" ${BUILD}/tether_ipstep --scene=${WORK}/bad.json)
+
+# The Python module with the tether (where ipstep has its Python module): the
+# same 20 steps as tether_ipstep's, to 1e-12 m, and the same bad-input line.
+file(GLOB python_targets ${WORK}/prefix/lib*/cmake/ipstep/ipstepPythonTargets.cmake)
+file(GLOB python_module ${BUILD}/ipstep_tether*.so)
+if(python_targets AND NOT python_module)
+  message(FATAL_ERROR "the installed ipstep has ipstep::python, but ipstep_tether was not built")
+elseif(python_module)
+  if(NOT PYTHON)
+    message(FATAL_ERROR "ipstep_tether was built, but no interpreter was passed (-DPYTHON=)")
+  endif()
+  set(ENV{PYTHONPATH} ${BUILD})
+  run(0 "same trajectory" ${PYTHON} ${SOURCE}/check_python.py ${SOURCE}/tethered_square.json
+      ${WORK}/positions.csv ${WORK}/bad.json)
+else()
+  message(STATUS "ipstep_tether (Python) not built: the installed ipstep has no ipstep::python")
+endif()

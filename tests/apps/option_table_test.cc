@@ -43,6 +43,8 @@ std::vector<FlaggedRow> AllRows() {
   for (const auto& r : SceneLoadOptionTable())
     rows.push_back({r.name, r.flag, r.type, r.default_value});
   for (const auto& r : RunOptionTable()) rows.push_back({r.name, r.flag, r.type, r.default_value});
+  for (const auto& r : AdaptiveOptionTable())
+    rows.push_back({r.name, r.flag, r.type, r.default_value});
   return rows;
 }
 
@@ -52,6 +54,9 @@ const std::map<std::string, std::string>& ProgramDefaults() {
       // ipstep retries a failed step as substeps; a library Simulation does
       // not unless asked (SimulationOptions::max_substeps = 1).
       {"max_substeps", "16"},
+      // --adaptive asks for 1 mm unless told; AdaptiveOptions has no default
+      // tolerance (a library or Python adaptive run must give one).
+      {"error_tolerance", "0.001"},
   };
   return defaults;
 }

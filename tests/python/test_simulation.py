@@ -126,3 +126,42 @@ def test_the_gil_is_released_while_a_step_runs():
     done.set()
     thread.join()
     assert len(ticks) > 5  # the other thread ran during the steps
+
+
+def test_adaptive_steps_reach_the_error_asked_for_on_the_oscillator():
+    # x = 1 + 0.1 cos t exactly; ipstep --adaptive's controller (sim/step_size_controller.h).
+    runs = {}
+    for tolerance in (1e-3, 1e-5):
+        sim = ipstep.Simulation("oscillator", integrator="newmark", adaptive=True,
+                                error_tolerance=tolerance)
+        assert sim.adaptive
+        summary = sim.run()
+        assert summary.adaptive and summary.termination == "completed" and summary.failed == 0
+        assert sim.time == pytest.approx(sim.steps * sim.dt)
+        error = abs(sim.positions[1, 0] - (1 + 0.1 * math.cos(sim.time)))
+        assert error < 3 * tolerance, (tolerance, error)
+        runs[tolerance] = summary.steps_done
+        assert sim.run().steps_done == 0  # at the end time: nothing left
+    # Second order: 100x tighter costs about 10x the steps.
+    assert 4 < runs[1e-5] / runs[1e-3] < 25, runs
+
+
+@pytest.mark.parametrize("options, message", [
+    (dict(adaptive=True), "options: AdaptiveOptions.error_tolerance: must be"),
+    (dict(error_tolerance=1e-3), "Simulation: error_tolerance applies with adaptive=True only"),
+    (dict(adaptive=True, error_tolerance=-1.0), "options: AdaptiveOptions.error_tolerance: must be"),
+    (dict(adaptive=True, error_tolerance=1e-3, max_substeps=4), "Simulation: an adaptive"),
+    (dict(adaptive=True, error_tolerance=1e-3, integrator="quasi_static"),
+     "options: RunOptions.adaptive: "),
+])
+def test_bad_adaptive_options_raise_value_error(options, message):
+    with pytest.raises(ValueError) as error:
+        ipstep.Simulation("oscillator", **options).run()
+    assert str(error.value).startswith(message), str(error.value)
+
+
+def test_an_adaptive_run_takes_no_steps_count_and_any_end_time():
+    sim = ipstep.Simulation("oscillator", adaptive=True, error_tolerance=1e-3, t_end=1.2345)
+    assert sim.run().termination == "completed" and sim.time == pytest.approx(1.2345)
+    with pytest.raises(ValueError, match="give no steps"):
+        sim.run(5)
