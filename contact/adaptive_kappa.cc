@@ -33,9 +33,8 @@ AdaptiveKappa AdaptiveKappa::ForMesh(const CollisionMesh& mesh, const std::vecto
   return AdaptiveKappa(fixed, stiffness, weight, d_hat);
 }
 
-bool GradientWithout(const IncrementalPotential& potential,
-                     std::initializer_list<const char*> families, const double* x,
-                     Eigen::VectorXd* gradient) {
+bool GradientWithout(const IncrementalPotential& potential, std::initializer_list<int> groups,
+                     const double* x, Eigen::VectorXd* gradient) {
   const long n = static_cast<long>(potential.dimension()) * potential.num_nodes();
   *gradient = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd part(n);
@@ -43,10 +42,10 @@ bool GradientWithout(const IncrementalPotential& potential,
   for (TermKind kind : {TermKind::kInertia, TermKind::kPotential, TermKind::kDissipation}) {
     double energy = 0.0;
     ok &= potential.EvaluateUnweighted(
-        [kind, &families](const Term& t) {
+        [kind, &groups](const Term& t) {
           if (t.kind != kind) return false;
-          for (const char* family : families) {
-            if (t.family == family) return false;
+          for (const int group : groups) {
+            if (t.group == group) return false;
           }
           return true;
         },

@@ -62,10 +62,9 @@ class AdaptiveKappa {
   double previous_gap_ = std::numeric_limits<double>::infinity();
 };
 
-// The weighted gradient at x of every term of the potential outside
-// `families` (g_E); false if they cannot be evaluated.
-bool GradientWithout(const IncrementalPotential& potential,
-                     std::initializer_list<const char*> families, const double* x,
-                     Eigen::VectorXd* gradient);
+// The weighted gradient at x of every term of the potential outside the term
+// `groups` (g_E); false if they cannot be evaluated.
+bool GradientWithout(const IncrementalPotential& potential, std::initializer_list<int> groups,
+                     const double* x, Eigen::VectorXd* gradient);
 
 }  // namespace ipstep

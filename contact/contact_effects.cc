@@ -1,6 +1,8 @@
 // The "contact" and "friction" effects: strict parsing of their scene
 // parameters (every problem is an InputError naming the file and key), flag
-// overrides, and construction of the contact filter (contact/contact_filter.h).
+// overrides, and construction of the contact filter (contact/contact_filter.h)
+// and the ContactEffect that stands for it (contact/contact_effect.h), which
+// friction receives.
 #include "contact/contact_effects.h"
 
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "contact/collision_mesh.h"
+#include "contact/contact_effect.h"
 #include "contact/contact_filter.h"
 #include "contact/obstacles/read_obstacle.h"
 #include "core/input_error.h"
@@ -37,7 +40,7 @@ double BoundingBoxDiagonal(const Scene& scene) {
   return (hi - lo).norm();
 }
 
-std::string BuildContact(TermBuilder& builder, const json& parameters) {
+std::unique_ptr<Effect> BuildContact(TermBuilder& builder, const json& parameters) {
   const Scene& scene = builder.scene();
   const std::string& source = scene.source;
   const int dim = scene.dimension;
@@ -105,21 +108,19 @@ std::string BuildContact(TermBuilder& builder, const json& parameters) {
   if (!penetration.empty()) {
     throw InputError(source, "contact", "the initial state is not free of contact: " + penetration);
   }
-  const std::string summary = filter->Summary();
+  auto effect = std::make_unique<ContactEffect>(filter.get(), filter->Summary());
   builder.AddStepFilter(std::move(filter));
-  return summary;
+  return effect;
 }
 
-std::string BuildFriction(TermBuilder& builder, const json& parameters) {
+std::unique_ptr<Effect> BuildFriction(TermBuilder& builder, const json& parameters) {
   const Scene& scene = builder.scene();
   const std::string& source = scene.source;
-  ContactFilter* filter = nullptr;
-  for (const auto& step_filter : builder.potential()->step_filters()) {
-    if (auto* m = dynamic_cast<ContactFilter*>(step_filter.get())) filter = m;
+  ContactEffect* contact = builder.FindEffect<ContactEffect>();
+  if (contact == nullptr) {
+    throw InputError(source, "effects", "\"friction\" needs \"contact\" in \"effects\"");
   }
-  if (filter == nullptr) {
-    throw InputError(source, "effects", "\"friction\" needs \"contact\" listed before it");
-  }
+  ContactFilter* filter = &contact->filter();
   if (parameters.is_null()) {
     throw InputError(source, "friction", "the \"friction\" effect needs its parameters object");
   }
@@ -144,7 +145,7 @@ std::string BuildFriction(TermBuilder& builder, const json& parameters) {
     out << " (self-contact: " << filter->self_contact_mu() << ")";
   out << ", epsilon_v " << options.epsilon_v << " m/s, " << options.iterations
       << " lag iteration(s) per step";
-  return out.str();
+  return std::make_unique<SummaryEffect>(out.str());
 }
 
 }  // namespace
@@ -153,8 +154,8 @@ void RegisterContactEffects(EffectRegistry* registry) {
   registry->Register(
       "contact", "IPC barrier contact: obstacles (plane, sphere, box) and self-contact (2D, 3D)",
       BuildContact);
-  registry->Register("friction", "smoothed dry friction on contacts (needs contact)",
-                     BuildFriction);
+  registry->Register("friction", "smoothed dry friction on contacts (needs contact)", BuildFriction,
+                     {"contact"});
 }
 
 }  // namespace ipstep

@@ -55,8 +55,10 @@ ContactFilter::ContactFilter(IncrementalPotential* potential, const State* state
   c.time = time_.pointer();
   c.kappa = kappa_.pointer();
   c.step = context_;
-  c.barrier_family = kContactFamily;
-  c.friction_family = kFrictionFamily;
+  barrier_group_ = potential_->NewTermGroup();
+  friction_group_ = potential_->NewTermGroup();
+  c.barrier = TermOwner{kContactFamily, barrier_group_};
+  c.friction = TermOwner{kFrictionFamily, friction_group_};
   sets_ = MakePairSets(c, options_.self_contact, state->x.data(),
                        options_.self_contact_kappa > 0.0 ? &options_.self_contact_kappa : nullptr);
   // The pairs already within d_hat at x_0 and their barrier terms: the
@@ -172,7 +174,7 @@ bool ContactFilter::ExtendPairs(const CandidateRegion& region) {
 }
 
 void ContactFilter::RebuildBarrierTerms() {
-  potential_->RemoveTerms(kContactFamily);
+  potential_->RemoveTerms(barrier_group_);
   for (const auto& set : sets_) set->AddBarrierTerms(potential_);
 }
 
@@ -201,7 +203,7 @@ void ContactFilter::LagFriction(const double* x, double t) {
 
 void ContactFilter::RebuildFrictionTerms() {
   if (!friction_enabled_) return;
-  potential_->RemoveTerms(kFrictionFamily);
+  potential_->RemoveTerms(friction_group_);
   num_friction_contacts_ = 0;
   if (!AnyFriction()) return;
   const FrictionSettings settings = Friction();
@@ -280,7 +282,7 @@ void ContactFilter::UpdateKappa(const double* x_n) {
     zero_fixed(g);
   };
   const auto rest_gradient = [&](Eigen::VectorXd* g) {
-    const bool ok = GradientWithout(*potential_, {kContactFamily, kFrictionFamily}, x_n, g);
+    const bool ok = GradientWithout(*potential_, {barrier_group_, friction_group_}, x_n, g);
     zero_fixed(g);
     return ok;
   };
@@ -361,9 +363,21 @@ bool ContactFilter::BarrierEnergy(const double* x, double t, double* energy) {
   const double saved_tau = *tau;
   *tau = t;
   const bool ok = potential_->EvaluateUnweighted(
-      [](const Term& term) { return term.family == kContactFamily; }, x, energy, nullptr);
+      [this](const Term& term) { return term.group == barrier_group_; }, x, energy, nullptr);
   *tau = saved_tau;
   return ok;
+}
+
+bool ContactFilter::BarrierForces(const double* x, Eigen::VectorXd* forces) const {
+  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(state_->x.size());
+  double energy = 0.0;
+  if (!potential_->EvaluateUnweighted(
+          [this](const Term& term) { return term.group == barrier_group_; }, x, &energy,
+          gradient.data())) {
+    return false;
+  }
+  *forces = -gradient;
+  return true;
 }
 
 double ContactFilter::PrescribedWork(const double* x_start, const double* x_end) {

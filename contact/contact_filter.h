@@ -3,7 +3,8 @@
 // reach, the barrier stiffness (contact/adaptive_kappa.h) and the lagged
 // friction terms, and reports min_distance / active_contacts. The pairs are
 // kept by pair kinds (contact/pair_set.h, registered in contact/pair_kinds.cc);
-// the filter only drives them. A pair's barrier term (family "contact") is
+// the filter only drives them. A pair's barrier term (family "contact", in the
+// filter's own term group) is
 //   w_U kappa w_i B(d)  (contact/barrier.h)
 // with w_i the weight of the pair's node, edge or face (contact/collision_mesh.h);
 // its friction term (family "friction", contact/friction.h) is
@@ -107,6 +108,9 @@ class ContactFilter : public StepFilter {
   double PrescribedWork(const double* x_start, const double* x_end) override;
   // U_b (the barrier terms' energy) at positions x and obstacle time t.
   bool BarrierEnergy(const double* x, double t, double* energy);
+  // -grad U_b at x (the barrier terms as they are, unweighted [N]); false when
+  // a term cannot be evaluated there.
+  bool BarrierForces(const double* x, Eigen::VectorXd* forces) const;
 
   // Over every kind's combinations closer than `reach` at the current
   // obstacle time: the smallest gap (infinity if none) and their number.
@@ -185,6 +189,10 @@ class ContactFilter : public StepFilter {
   int stages_ = 0;  // solutions of this step at a staged obstacle time
 
   std::vector<std::unique_ptr<PairSet>> sets_;
+  // The potential's term groups of the barrier and friction terms this filter
+  // owns (it removes and selects them by these, never by family name).
+  int barrier_group_ = 0;
+  int friction_group_ = 0;
 
   bool friction_enabled_ = false;
   FrictionOptions friction_;

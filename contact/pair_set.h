@@ -51,8 +51,10 @@ struct PairSetContext {
   const double* time = nullptr;   // the obstacles' current time tau [s]
   const double* kappa = nullptr;  // barrier stiffness
   const StepContext* step = nullptr;
-  const char* barrier_family = "contact";
-  const char* friction_family = "friction";
+  // The terms' owners: the barrier's ("contact") and friction's ("friction")
+  // families and the filter's term groups.
+  TermOwner barrier{"contact", 0};
+  TermOwner friction{"friction", 0};
 };
 
 // Where Extend looks for candidates: positions moving from `start` to `end`
@@ -128,7 +130,7 @@ class PairSet {
                                   Eigen::VectorXd* g) const = 0;
 
   // Terms of the active set.
-  // One barrier term per active pair (family context.barrier_family, kind
+  // One barrier term per active pair (owner context.barrier, kind
   // kPotential, impulsive), reading time and kappa through the context.
   virtual void AddBarrierTerms(IncrementalPotential* potential) const = 0;
   // True if the terms read lagged data that BeginStep refills (the filter
@@ -154,7 +156,7 @@ class PairSet {
     (void)x;
     (void)t;
   }
-  // Adds the lagged friction terms (family context.friction_family, kind
+  // Adds the lagged friction terms (owner context.friction, kind
   // kDissipation); returns the number of contacts with friction.
   virtual int AddFrictionTerms(const FrictionSettings& friction,
                                IncrementalPotential* potential) const {

@@ -43,7 +43,7 @@ bool PrimitiveObstacleFriction::Evaluate(double const* const* x, double* residua
 }
 
 int AddPrimitiveObstacleFrictionTerms(const std::vector<PrimitiveObstacleFrictionLag>& lags,
-                                      const StepContext* step, const char* family,
+                                      const StepContext* step, const TermOwner& owner,
                                       const FrictionSettings& friction,
                                       IncrementalPotential* potential) {
   int count = 0;
@@ -53,7 +53,7 @@ int AddPrimitiveObstacleFrictionTerms(const std::vector<PrimitiveObstacleFrictio
     ++count;
     Term term;
     term.kind = TermKind::kDissipation;
-    term.family = family;
+    term.SetOwner(owner);
     term.impulsive = true;
     term.nodes.assign(lag.nodes.begin(), lag.nodes.begin() + lag.num_nodes);
     term.frame_velocity = lag.obstacle_velocity;

@@ -52,10 +52,10 @@ class PrimitiveObstacleFriction : public ceres::CostFunction {
 };
 
 // One term per lag whose obstacle's coefficient mu (FrictionSettings::
-// ForObstacle) is > 0 (kind kDissipation, impulsive, family `family`,
+// ForObstacle) is > 0 (kind kDissipation, impulsive, owner `owner`,
 // FrictionLoss mu lambda); returns the number of terms.
 int AddPrimitiveObstacleFrictionTerms(const std::vector<PrimitiveObstacleFrictionLag>& lags,
-                                      const StepContext* step, const char* family,
+                                      const StepContext* step, const TermOwner& owner,
                                       const FrictionSettings& friction,
                                       IncrementalPotential* potential);
 

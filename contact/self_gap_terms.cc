@@ -205,14 +205,14 @@ bool SelfFriction::Evaluate(double const* const* x, double* residuals, double** 
 }
 
 int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepContext* step,
-                         const char* family, const FrictionSettings& friction,
+                         const TermOwner& owner, const FrictionSettings& friction,
                          IncrementalPotential* potential) {
   const double mu = friction.ForSelf();
   if (!(mu > 0.0)) return 0;
   for (const SelfFrictionLag& lag : lags) {
     Term term;
     term.kind = TermKind::kDissipation;
-    term.family = family;
+    term.SetOwner(owner);
     term.impulsive = true;
     term.nodes.assign(lag.nodes.begin(), lag.nodes.end());
     term.cost = std::make_unique<SelfFriction>(step, lag.nodes.data(), lag.alpha.data(),

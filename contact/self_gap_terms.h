@@ -116,12 +116,12 @@ struct SelfFrictionLag {
   double normal_force;
 };
 
-// One SelfFriction term per lag (kind kDissipation, impulsive, family
-// `family`, FrictionLoss mu lambda, mu the self-contact coefficient
+// One SelfFriction term per lag (kind kDissipation, impulsive, owner
+// `owner`, FrictionLoss mu lambda, mu the self-contact coefficient
 // FrictionSettings::ForSelf); returns the number of lags, 0 (no terms) when
 // mu is 0. Shared by the point-triangle and edge-edge kinds.
 int AddSelfFrictionTerms(const std::vector<SelfFrictionLag>& lags, const StepContext* step,
-                         const char* family, const FrictionSettings& friction,
+                         const TermOwner& owner, const FrictionSettings& friction,
                          IncrementalPotential* potential);
 
 }  // namespace ipstep

@@ -83,11 +83,12 @@ void IncrementalPotential::AddTerm(Term term) {
   ++structure_version_;
 }
 
-int IncrementalPotential::RemoveTerms(const std::string& family) {
+int IncrementalPotential::RemoveTerms(int group) {
+  if (group <= 0) throw std::invalid_argument("RemoveTerms: a term group is > 0");
   const size_t before = terms_.size();
-  terms_.erase(std::remove_if(terms_.begin(), terms_.end(),
-                              [&](const Term& t) { return t.family == family; }),
-               terms_.end());
+  terms_.erase(
+      std::remove_if(terms_.begin(), terms_.end(), [&](const Term& t) { return t.group == group; }),
+      terms_.end());
   const int removed = static_cast<int>(before - terms_.size());
   if (removed > 0) {
     ++structure_version_;

@@ -39,8 +39,11 @@ class IncrementalPotential {
 
   // Checks node indices and parameter block sizes (throws std::invalid_argument).
   void AddTerm(Term term);
-  // Removes every term of `family` (e.g. to rebuild a contact set); returns how many.
-  int RemoveTerms(const std::string& family);
+  // A new term group (Term::group, > 0) for an owner that removes its terms
+  // and adds them again (the contact filter: every step's pairs).
+  int NewTermGroup() { return ++term_groups_; }
+  // Removes every term of `group` (> 0); returns how many.
+  int RemoveTerms(int group);
   const std::vector<Term>& terms() const { return terms_; }
   int CountTerms(TermKind kind) const;
   // Changes whenever terms are added or removed: solvers that mirror the terms
@@ -114,6 +117,7 @@ class IncrementalPotential {
   std::vector<Term> terms_;
   std::vector<std::unique_ptr<StepFilter>> filters_;
   int structure_version_ = 0;
+  int term_groups_ = 0;  // the last NewTermGroup
   int max_residuals_ = 0;
   int max_nodes_ = 0;
   std::unique_ptr<ThreadPool> pool_;

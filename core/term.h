@@ -54,9 +54,22 @@ constexpr int kMaxTermCoordinates = 24;
 const char* TermKindName(TermKind kind);
 double TermWeight(TermKind kind, const StepContext& context);
 
+// Who a term belongs to: its family names it in reports ("contact"); its group
+// (IncrementalPotential::NewTermGroup; 0: none) lets the owner that rebuilds
+// terms (the contact filter) remove and select exactly its own.
+struct TermOwner {
+  const char* family = "";
+  int group = 0;
+};
+
 struct Term {
   TermKind kind = TermKind::kPotential;
-  std::string family;                         // effect that built it, e.g. "springs"
+  std::string family;  // effect that built it, e.g. "springs"
+  int group = 0;       // TermOwner::group
+  void SetOwner(const TermOwner& owner) {
+    family = owner.family;
+    group = owner.group;
+  }
   std::vector<int> nodes;                     // one parameter block per node
   std::unique_ptr<ceres::CostFunction> cost;  // unweighted residual
   std::unique_ptr<ceres::LossFunction> loss;  // may be null

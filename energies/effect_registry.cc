@@ -9,10 +9,21 @@
 namespace ipstep {
 
 void EffectRegistry::Register(const std::string& name, const std::string& description,
-                              EffectFactory factory) {
+                              EffectFactory factory, std::vector<std::string> needs) {
   if (name.empty()) throw std::invalid_argument("effect name must not be empty");
   if (effects_.count(name)) throw std::invalid_argument("effect '" + name + "' already registered");
-  effects_[name] = EffectInfo{name, description, std::move(factory)};
+  if (!factory) throw std::invalid_argument("effect '" + name + "' has no factory");
+  effects_[name] = EffectInfo{name, description, std::move(factory), std::move(needs)};
+}
+
+void EffectRegistry::Register(const std::string& name, const std::string& description,
+                              SummaryEffectFactory factory) {
+  if (!factory) throw std::invalid_argument("effect '" + name + "' has no factory");
+  Register(name, description,
+           [factory = std::move(factory)](
+               TermBuilder& builder, const nlohmann::json& parameters) -> std::unique_ptr<Effect> {
+             return std::make_unique<SummaryEffect>(factory(builder, parameters));
+           });
 }
 
 bool EffectRegistry::Has(const std::string& name) const { return effects_.count(name) > 0; }

@@ -5,36 +5,51 @@
 // friction from contact/contact_effects.h); a program adds its own effects to a
 // copy and hands it to the simulation (SimulationOptions::effects) and the
 // scene loader (SceneLoadOptions::extra_effects = registry.UserNames()).
-// Effects read their parameters with core/json_node.h.
+// Effects read their parameters with core/json_node.h. A built effect is an
+// Effect object (energies/effect.h) the simulation keeps.
 #pragma once
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "energies/effect.h"
 #include "energies/term_builder.h"
 
 namespace ipstep {
 
 // Adds the effect's terms. `parameters` is the scene's top-level object under
-// the effect's name (null when absent). Returns a one-line summary for the
-// "active effects" report. Throws InputError for bad parameters.
+// the effect's name (null when absent). Returns the built effect (its Summary
+// is the line of the "active effects" report). Throws InputError for bad
+// parameters.
 using EffectFactory =
+    std::function<std::unique_ptr<Effect>(TermBuilder& builder, const nlohmann::json& parameters)>;
+// The same for an effect that leaves nothing but its summary line behind
+// (registered as a SummaryEffect).
+using SummaryEffectFactory =
     std::function<std::string(TermBuilder& builder, const nlohmann::json& parameters)>;
 
 struct EffectInfo {
   std::string name;
   std::string description;
   EffectFactory factory;
+  // Effects this one works with when the scene lists them (friction: contact):
+  // they are built before it whatever the order of the scene's "effects".
+  std::vector<std::string> needs;
 };
 
 class EffectRegistry {
  public:
   // Throws std::invalid_argument if the name is taken or empty.
-  void Register(const std::string& name, const std::string& description, EffectFactory factory);
+  void Register(const std::string& name, const std::string& description, EffectFactory factory,
+                std::vector<std::string> needs = {});
+  void Register(const std::string& name, const std::string& description,
+                SummaryEffectFactory factory);
   bool Has(const std::string& name) const;
   const EffectInfo& Get(const std::string& name) const;
   std::set<std::string> Names() const;

@@ -15,6 +15,7 @@
 
 #include "core/incremental_potential.h"
 #include "core/state.h"
+#include "energies/effect.h"
 #include "problems/scene.h"
 
 namespace ipstep {
@@ -58,9 +59,14 @@ struct HasResidualCurvature<F, std::void_t<decltype(std::declval<const F&>().Res
 
 class TermBuilder {
  public:
+  // `effects`: those built so far (may be null: none).
   TermBuilder(const Scene& scene, const State& state, bool has_inertia,
-              IncrementalPotential* potential)
-      : scene_(scene), state_(state), has_inertia_(has_inertia), potential_(potential) {}
+              IncrementalPotential* potential, const EffectList* effects = nullptr)
+      : scene_(scene),
+        state_(state),
+        has_inertia_(has_inertia),
+        potential_(potential),
+        effects_(effects) {}
 
   const Scene& scene() const { return scene_; }
   const State& state() const { return state_; }
@@ -100,6 +106,13 @@ class TermBuilder {
   }
   IncrementalPotential* potential() const { return potential_; }
 
+  // An effect built before this one, of exactly type T, or null. Declare it in
+  // EffectInfo::needs so that it is built first.
+  template <class T>
+  T* FindEffect() const {
+    return effects_ == nullptr ? nullptr : effects_->Find<T>();
+  }
+
   // Family name recorded on the terms added from now on (the effect's name).
   void set_family(std::string family) { family_ = std::move(family); }
 
@@ -132,6 +145,7 @@ class TermBuilder {
   const State& state_;
   bool has_inertia_;
   IncrementalPotential* potential_;
+  const EffectList* effects_;
   std::string family_;
 };
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <map>
 
-#include "contact/contact_filter.h"
+#include "contact/contact_effect.h"
 #include "core/input_error.h"
 #include "io/element_fields.h"
 #include "io/obstacle_mesh.h"
@@ -116,13 +116,11 @@ FrameWriter::FrameWriter(const std::string& directory, const Simulation& sim,
   for (int i = 0; i < scene.num_nodes(); ++i) {
     if (!has_spring[i]) particles_.push_back(i);
   }
-  for (const auto& filter : sim.potential().step_filters()) {
-    if (const auto* contact = dynamic_cast<const ContactFilter*>(filter.get())) {
-      has_contact_ = true;
-      for (const ObstaclePtr& o : contact->obstacles()) {
-        obstacles_.push_back(o);
-        obstacles_move_ = obstacles_move_ || o->is_moving();
-      }
+  contact_ = sim.FindEffect<ContactEffect>();
+  if (contact_ != nullptr) {
+    for (const ObstaclePtr& o : contact_->obstacles()) {
+      obstacles_.push_back(o);
+      obstacles_move_ = obstacles_move_ || o->is_moving();
     }
   }
   const State& s = sim.state();
@@ -147,7 +145,7 @@ void FrameWriter::Write(int frame) {
     velocity.push_back(NodePosition(s.v, dim, i));
   }
   body.point_vectors.push_back({"velocity", velocity});
-  if (has_contact_) body.point_vectors.push_back({"contact_force", ContactForces()});
+  if (contact_ != nullptr) body.point_vectors.push_back({"contact_force", ContactForces()});
   std::vector<int> kind;  // 0 spring, 1 triangle, 2 particle, 3 tetrahedron
   for (const Spring& spring : scene.springs) {
     body.AddCell(VtkCell::kLine, {spring.i, spring.j});
@@ -199,17 +197,13 @@ void FrameWriter::Write(int frame) {
 }
 
 std::vector<Eigen::Vector3d> FrameWriter::ContactForces() const {
-  // -grad of the barrier energy (the contact terms, unweighted) at x; zero
-  // where it cannot be evaluated.
+  // The contact effect's barrier forces at x; zero where they cannot be evaluated.
   const State& s = sim_.state();
-  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(s.x.size());
-  double energy = 0.0;
-  const bool ok = sim_.potential().EvaluateUnweighted(
-      [](const Term& term) { return term.family == ContactFilter::kContactFamily; }, s.x.data(),
-      &energy, gradient.data());
+  Eigen::VectorXd forces;
+  const bool ok = contact_ != nullptr && contact_->filter().BarrierForces(s.x.data(), &forces);
   std::vector<Eigen::Vector3d> force;
   for (int i = 0; i < s.num_nodes(); ++i) {
-    force.push_back(ok ? Eigen::Vector3d(-NodePosition(gradient, s.dimension, i))
+    force.push_back(ok ? Eigen::Vector3d(NodePosition(forces, s.dimension, i))
                        : Eigen::Vector3d::Zero());
   }
   return force;

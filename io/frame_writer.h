@@ -38,6 +38,8 @@
 
 namespace ipstep {
 
+class ContactEffect;
+
 class FrameWriter {
  public:
   // Creates DIR if needed. Throws InputError "output: <output>: cannot create
@@ -70,7 +72,8 @@ class FrameWriter {
   std::vector<int> surface_nodes_;
   std::vector<int> surface_elements_;
   ObstacleList obstacles_;
-  bool has_contact_ = false;  // the scene has contact: point data "contact_force"
+  // The scene's contact (point data "contact_force"), or null.
+  const ContactEffect* contact_ = nullptr;
   bool obstacles_move_ = false;
   bool static_obstacles_written_ = false;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // of the initial positions

@@ -106,7 +106,7 @@ void Simulation::BuildState() {
 void Simulation::BuildPotential() {
   potential_ = std::make_unique<IncrementalPotential>(state_.dimension, state_.num_nodes());
   integrator_->SetWeights(time_step_, &potential_->context());
-  TermBuilder builder(scene_, state_, integrator_->has_inertia(), potential_.get());
+  TermBuilder builder(scene_, state_, integrator_->has_inertia(), potential_.get(), &effects_);
   if (integrator_->has_inertia() && integrator_->is_variational()) {
     builder.set_family("inertia");
     for (int i = 0; i < state_.num_nodes(); ++i) {
@@ -129,6 +129,35 @@ void Simulation::BuildPotential() {
     if (!registry.Has(effect)) {
       throw InputError(scene_.source, "effects", "effect '" + effect + "' is not registered");
     }
+  }
+  // Scene order, except that an effect comes after those it needs
+  // (EffectInfo::needs) that the scene lists.
+  std::vector<size_t> order;
+  std::vector<bool> built(scene_.effects.size(), false);
+  while (order.size() < scene_.effects.size()) {
+    const size_t before = order.size();
+    for (size_t i = 0; i < scene_.effects.size(); ++i) {
+      if (built[i]) continue;
+      bool ready = true;
+      for (const std::string& need : registry.Get(scene_.effects[i]).needs) {
+        for (size_t j = 0; j < scene_.effects.size(); ++j) {
+          if (scene_.effects[j] == need && !built[j]) ready = false;
+        }
+      }
+      if (ready) {
+        built[i] = true;
+        order.push_back(i);
+        break;
+      }
+    }
+    if (order.size() == before) {
+      throw InputError(scene_.source, "effects",
+                       "the effects need each other in a cycle (EffectInfo::needs)");
+    }
+  }
+  effect_summaries_.assign(scene_.effects.size(), "");
+  for (const size_t index : order) {
+    const std::string& effect = scene_.effects[index];
     auto it = scene_.effect_parameters.find(effect);
     nlohmann::json parameters =
         it == scene_.effect_parameters.end() ? nlohmann::json() : it->second;
@@ -137,7 +166,12 @@ void Simulation::BuildPotential() {
       for (const auto& item : override_it->second.items()) parameters[item.key()] = item.value();
     }
     builder.set_family(effect);
-    effect_summaries_.push_back(registry.Get(effect).factory(builder, parameters));
+    std::unique_ptr<Effect> built_effect = registry.Get(effect).factory(builder, parameters);
+    if (built_effect == nullptr) {
+      throw std::logic_error("the factory of effect '" + effect + "' returned no effect");
+    }
+    effect_summaries_[index] = built_effect->Summary();
+    effects_.Add(effect, std::move(built_effect));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "core/forces.h"
 #include "core/incremental_potential.h"
 #include "core/state.h"
+#include "energies/effect.h"
 #include "energies/effect_registry.h"
 #include "integrators/integrator.h"
 #include "problems/scene.h"
@@ -116,6 +117,13 @@ class Simulation {
   const Eigen::VectorXd& gravity() const { return gravity_; }
   // One line per active effect (what was built), in scene order.
   const std::vector<std::string>& effect_summaries() const { return effect_summaries_; }
+  // The built effects (energies/effect.h), in the order they were built.
+  const EffectList& effects() const { return effects_; }
+  // The effect of exactly type T (ContactEffect, contact/contact_effect.h), or null.
+  template <class T>
+  const T* FindEffect() const {
+    return effects_.Find<T>();
+  }
   EnergyReport Energies() const;
   // Replaces the Ceres step solver by another StepSolver over the same potential
   // and state (e.g. a reference solver in bench/). Variational integrators only.
@@ -161,6 +169,7 @@ class Simulation {
   std::unique_ptr<Integrator> integrator_;
   std::unique_ptr<IncrementalPotential> potential_;
   std::unique_ptr<StepSolver> solver_;
+  EffectList effects_;
   std::vector<std::string> effect_summaries_;
   RunEnergyBalance run_energy_;
 };

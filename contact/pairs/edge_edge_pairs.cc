@@ -186,7 +186,7 @@ void EdgeEdgePairs::AddBarrierTerms(IncrementalPotential* potential) const {
     const auto& v = edges[pair.f];
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = context_.barrier_family;
+    term.SetOwner(context_.barrier);
     term.impulsive = true;
     term.nodes = {u[0], u[1], v[0], v[1]};
     auto cost =
@@ -230,8 +230,7 @@ void EdgeEdgePairs::LagFriction(const double* x, double t) {
 
 int EdgeEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
                                     IncrementalPotential* potential) const {
-  return AddSelfFrictionTerms(friction_, context_.step, context_.friction_family, friction,
-                              potential);
+  return AddSelfFrictionTerms(friction_, context_.step, context_.friction, friction, potential);
 }
 
 }  // namespace ipstep

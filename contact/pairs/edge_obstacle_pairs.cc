@@ -182,7 +182,7 @@ void EdgeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
     const auto& e = c_.mesh->edges[pair.edge];
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = c_.barrier_family;
+    term.SetOwner(c_.barrier);
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
     const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];

@@ -65,8 +65,7 @@ void MeshObstaclePairs::LagFriction(const double* x, double t) {
 
 int MeshObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
                                         IncrementalPotential* potential) const {
-  return AddPrimitiveObstacleFrictionTerms(friction_, c_.step, c_.friction_family, friction,
-                                           potential);
+  return AddPrimitiveObstacleFrictionTerms(friction_, c_.step, c_.friction, friction, potential);
 }
 
 }  // namespace ipstep

@@ -243,14 +243,14 @@ double MeshObstaclePairs::Lag(const double* x, double t) {
   return excess;
 }
 
-void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const char* family,
+void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const TermOwner& owner,
                                         const double* time, const double* kappa) const {
   for (size_t k = 0; k < face_pairs_.size(); ++k) {
     const FacePair& p = face_pairs_[k];
     const auto& f = surface_->faces[p.face];
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = family;
+    term.SetOwner(owner);
     term.impulsive = true;
     term.nodes = {f[0], f[1], f[2]};
     const Obstacle& obstacle = *(*obstacles_)[p.obstacle];
@@ -267,7 +267,7 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const c
     const auto& e = surface_->edges[p.edge];
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = family;
+    term.SetOwner(owner);
     term.impulsive = true;
     term.nodes = {e[0], e[1]};
     auto cost = std::make_unique<EdgeBoxEdgeGap>((*obstacles_)[p.obstacle].get(), p.box_edge, time,

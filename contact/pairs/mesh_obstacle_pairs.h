@@ -57,7 +57,7 @@ class MeshObstaclePairs : public PairSet {
   void RestoreLags() override { face_lag_ = saved_lag_; }
   bool TermsReadLags() const override { return !empty(); }
   void AddBarrierTerms(IncrementalPotential* potential) const override {
-    AddBarrierTerms(potential, c_.barrier_family, c_.time, c_.kappa);
+    AddBarrierTerms(potential, c_.barrier, c_.time, c_.kappa);
   }
   // Friction (contact/pairs/mesh_obstacle_friction.cc): lagged closest
   // point, normal and normal force of every active pair within d_hat.
@@ -85,10 +85,10 @@ class MeshObstaclePairs : public PairSet {
   // within d_hat.
   double Lag(const double* x, double t);
 
-  // Barrier terms of every pair (family `family`, kind kPotential, impulsive),
+  // Barrier terms of every pair (owner `owner`, kind kPotential, impulsive),
   // reading the obstacle time and kappa through the pointers. The terms point
   // into the lags: rebuild after Extend.
-  void AddBarrierTerms(IncrementalPotential* potential, const char* family, const double* time,
+  void AddBarrierTerms(IncrementalPotential* potential, const TermOwner& owner, const double* time,
                        const double* kappa) const;
 
   // First fraction of the path from a (obstacle time t_a) to b (t_b) at which

@@ -108,7 +108,7 @@ void NodeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
   for (const Pair& pair : pairs_.pairs()) {
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = c_.barrier_family;
+    term.SetOwner(c_.barrier);
     term.impulsive = true;
     term.nodes = {c_.mesh->nodes[pair.slot]};
     const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
@@ -153,7 +153,7 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
     for (int side : sides) {
       Term term;
       term.kind = TermKind::kDissipation;
-      term.family = c_.friction_family;
+      term.SetOwner(c_.friction);
       term.impulsive = true;
       term.nodes = {f.node};
       term.frame_velocity = f.obstacle_velocity;

@@ -168,7 +168,7 @@ void PointEdgePairs::AddBarrierTerms(IncrementalPotential* potential) const {
     const auto& e = c_.mesh->edges[pair.edge];
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = c_.barrier_family;
+    term.SetOwner(c_.barrier);
     term.impulsive = true;
     term.nodes = {c_.mesh->nodes[pair.slot], e[0], e[1]};
     auto cost = std::make_unique<PointEdgeGap>(c_.d_hat, c_.margin);
@@ -204,7 +204,7 @@ int PointEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
     for (int side : {1, -1}) {
       Term term;
       term.kind = TermKind::kDissipation;
-      term.family = c_.friction_family;
+      term.SetOwner(c_.friction);
       term.impulsive = true;
       term.nodes = {f.p, f.a, f.b};
       term.cost =

@@ -202,7 +202,7 @@ void PointTrianglePairs::AddBarrierTerms(IncrementalPotential* potential) const 
     const auto& f = context_.mesh->faces[pair.face];
     Term term;
     term.kind = TermKind::kPotential;
-    term.family = context_.barrier_family;
+    term.SetOwner(context_.barrier);
     term.impulsive = true;
     term.nodes = {pair.node, f[0], f[1], f[2]};
     auto cost = std::make_unique<PointTriangleGap>(context_.d_hat, context_.margin);
@@ -238,8 +238,7 @@ void PointTrianglePairs::LagFriction(const double* x, double t) {
 
 int PointTrianglePairs::AddFrictionTerms(const FrictionSettings& friction,
                                          IncrementalPotential* potential) const {
-  return AddSelfFrictionTerms(friction_, context_.step, context_.friction_family, friction,
-                              potential);
+  return AddSelfFrictionTerms(friction_, context_.step, context_.friction, friction, potential);
 }
 
 }  // namespace ipstep
