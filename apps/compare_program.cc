@@ -6,7 +6,7 @@
 // otherwise against Newmark(1/4, 1/2) with newton at dt/16 and a tight tolerance,
 // whose own error is estimated from a dt/8 run (second order: e ~ |x8 - x16| / 3).
 // The reference tolerance is 1e-7 m/s: near the precision floor of cost-based
-// acceptance (README "Precision floor"); its failed steps are reported.
+// acceptance (docs/optimisers.md "Precision floor"); its failed steps are reported.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -5,7 +5,7 @@
 // struct "options: <Struct>.<field>: ..." (e.g. "options: OptimizerOptions.
 // tolerance: must be a finite number > 0, got 0"; with the value when it
 // matters, "options: OptimizerOptions.optimizer=bfgs: ...") and an output it
-// cannot write by the name its caller gave it, "output: <name>: ..." (README
+// cannot write by the name its caller gave it, "output: <name>: ..." (docs/architecture.md
 // "Using ipstep as a library"). The programs (ipstep, ipstep_compare,
 // ipstep_bench) print such an error naming the flag instead:
 // "flag: --tolerance: must be ...". Flags the programs check themselves

@@ -23,7 +23,7 @@
 
 namespace ipstep {
 
-// ipstep: one scene with one integrator and one optimiser (README "The programs").
+// ipstep: one scene with one integrator and one optimiser (docs/programs.md).
 int RunIpstep(int argc, char** argv);
 // ipstep_compare: every integrator x optimiser on one scene, as a table.
 int RunCompare(int argc, char** argv);

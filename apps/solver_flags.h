@@ -1,5 +1,5 @@
 // The gflags shared by the ipstep programs: scene, integrator, optimiser and
-// every Ceres option an optimiser sets (see README.md "Flags").
+// every Ceres option an optimiser sets (see docs/programs.md "Flags").
 #pragma once
 
 #include <gflags/gflags.h>

@@ -1,7 +1,7 @@
 // The ranges within which ipstep accepts physical inputs (scene keys, contact
 // parameters) and the programs' size-like flags. Anything outside is an
 // InputError (exit code 2) naming the key or flag and the range. Documented in
-// docs/scenes.md ("Validation"), docs/contact.md and README.md ("Flags").
+// docs/scenes.md ("Validation"), docs/contact.md and docs/programs.md ("Flags").
 //
 // Why these values: within them every energy, force, Hessian entry and step
 // weight of a scene of at most 10^6 nodes stays a finite, normal double (the

@@ -11,7 +11,7 @@
 namespace ipstep::python {
 namespace {
 
-// A step's verdict, from its status (README "Step statuses").
+// A step's verdict, from its status (docs/programs.md "Step statuses").
 enum class StepStatus {
   kConverged,
   kIterationLimit,

@@ -29,7 +29,7 @@ struct ComparisonOptions {
   std::vector<std::string> integrators;  // names (IntegratorOptions.name)
   std::vector<std::string> optimizers;   // names (OptimizerOptions.optimizer)
   // The reference's tolerance [m/s]: near the precision floor of cost-based
-  // acceptance (README "Precision floor").
+  // acceptance (docs/optimisers.md "Precision floor").
   double reference_tolerance = 1e-7;
   // Read between steps (RunOptions::interrupt): once non-zero, the
   // configuration in progress stops and no other starts.

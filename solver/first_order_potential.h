@@ -14,7 +14,7 @@
 // Precision. With `precise_energy`, F is E(x) - E(x_start) summed from term
 // residuals in extended precision (long double) before rounding to double: the
 // decreases a line search must see near convergence are far below double
-// round-off of E itself (README "Precision floor"). The gradient is the
+// round-off of E itself (docs/optimisers.md "Precision floor"). The gradient is the
 // double-precision autodiff gradient.
 #pragma once
 

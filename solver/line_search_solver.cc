@@ -79,7 +79,7 @@ StepSolveResult LineSearchSolver::Solve(Eigen::VectorXd* x) {
   // Ceres compares energies in double: once the decrease per iteration falls
   // below round-off of the energy drop since the start, the line search stalls
   // (reported as CONVERGENCE). A restart from the last iterate re-references
-  // the energy there, which restores the resolution (README "Precision floor").
+  // the energy there, which restores the resolution (docs/optimisers.md "Precision floor").
   const int max_iterations = ceres_options_.max_num_iterations;
   ceres::GradientProblemSolver::Options options = ceres_options_;
   ceres::GradientProblemSolver::Summary summary;

@@ -1,6 +1,6 @@
 // Optimiser names and the Ceres solver options each one sets. Every option can
 // be overridden (the ipstep program exposes each as a gflag); the defaults are
-// documented in README.md ("Optimisers") and were chosen by measurement
+// documented in docs/optimisers.md and were chosen by measurement
 // (bench/; the tables in docs/benchmarks.md).
 //
 //   name              path                      Ceres options
@@ -165,7 +165,7 @@ struct OptimizerOptions {
 
 // The Ceres options for the trust-region optimisers (newton, dogleg), validated
 // with Solver::Options::IsValid. Throws InputError naming the offending option
-// ("options: OptimizerOptions.<field>: ...", README "Using ipstep as a library").
+// ("options: OptimizerOptions.<field>: ...", docs/architecture.md "Using ipstep as a library").
 ceres::Solver::Options MakeTrustRegionOptions(const OptimizerOptions& options);
 // The same for the line-search optimisers.
 ceres::GradientProblemSolver::Options MakeLineSearchOptions(const OptimizerOptions& options);

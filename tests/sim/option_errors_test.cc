@@ -1,5 +1,5 @@
 // The library names bad options as the library spells them,
-// "options: <Struct>.<field>: ..." (README "Using ipstep as a library"), never
+// "options: <Struct>.<field>: ..." (docs/architecture.md "Using ipstep as a library"), never
 // a program's flag: a program using ipstep as a library has no flags (the
 // programs map the names to theirs, apps/flag_names.h).
 #include <functional>

@@ -22,7 +22,7 @@ Eigen::VectorXd OneStep(const std::string& integrator, const std::string& optimi
 
 TEST(OptimizerAgreement, AllOptimizersReachTheSameClothStep) {
   // Tolerances sit above the precision floor of cost-based acceptance (~1e-7 m/s
-  // here: README "Precision floor").
+  // here: docs/optimisers.md "Precision floor").
   const double tolerance = 1e-6, reference_tolerance = 1e-7, h = 1.0 / 60.0;
   for (const char* integrator : {"backward_euler", "newmark"}) {
     StepReport reference_report;
