@@ -38,7 +38,7 @@ const std::vector<FlagName>& FlagNames() {
       {"options: AdaptiveOptions.min_time_step", "min_dt"},
       {"options: AdaptiveOptions.max_time_step", "max_dt"},
       {"options: RunOptions.adaptive", "adaptive"},
-      // problems/scene_loader.cc
+      // problems/generators.cc (the grid generator)
       {"options: SceneLoadOptions.grid_size", "grid_size"},
       // io/: the names apps/ipstep_program.cc gives its outputs
       {"output: stats", "stats"},

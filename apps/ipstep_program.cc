@@ -39,7 +39,7 @@
 DEFINE_string(on_failure, "stop",
               "When a step fails (not converged, energy growth, penetration, non-finite) even "
               "after its substeps: stop (exit code 3) or continue");
-DEFINE_int32(max_substeps, 16,
+DEFINE_int32(max_substeps, ipstep::kProgramMaxSubsteps,
              "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
              "1: no retry");
 DEFINE_string(stats, "", "CSV file: one row per step");
@@ -101,7 +101,8 @@ int Run(const EffectRegistry& registry) {
                      "must be 'stop' or 'continue', got '" + ClipInput(FLAGS_on_failure) + "'");
   }
   options.max_substeps =
-      CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, 1024, "16 substeps; 1 is no retry");
+      CheckFlagRange("max_substeps", FLAGS_max_substeps, 1, limits::kMaxSubsteps,
+                     std::to_string(kProgramMaxSubsteps) + " substeps; 1 is no retry");
   CheckFlagRange("frame_every", FLAGS_frame_every, 1, limits::kMaxSteps, "");
   VtkEncoding frames_format;
   if (!ParseVtkEncoding(FLAGS_frames_format, &frames_format)) {

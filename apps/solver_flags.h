@@ -19,6 +19,11 @@ DECLARE_int32(grid_size);
 
 namespace ipstep {
 
+// --max_substeps's default in ipstep (and ipstep_tune's runs): a failed step
+// is retried as up to 16 substeps; the library's default is 1
+// (SimulationOptions::max_substeps).
+constexpr int kProgramMaxSubsteps = 16;
+
 // Reads and validates the flags. Throws InputError naming the flag.
 // `registry`: the effects scenes are built with (SimulationOptions::effects;
 // it must outlive the simulations).

@@ -137,7 +137,7 @@ int Run(const EffectRegistry& registry) {
   }
   CheckFlagRange("budget_seconds", FLAGS_budget_seconds, 0.0, 1e6, "s", "", /*min_open=*/true);
   SimulationOptions base = SimulationOptionsFromFlags(registry);
-  base.max_substeps = 16;
+  base.max_substeps = kProgramMaxSubsteps;
   const Scene scene = LoadScene(FLAGS_scene, SceneLoadOptionsFromFlags(registry));
   CheckContactFlagsApply(scene);
   const double dt = base.time_step > 0.0 ? base.time_step : scene.time_step;

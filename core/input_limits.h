@@ -76,6 +76,9 @@ constexpr double kMaxEpsilonV = 1e6;
 constexpr int kMaxFrictionIterations = 100;
 
 // ---- Optimisers and programs (solver/optimizer_options.cc, apps/) ----------
+// Substeps a failed step is retried as (SimulationOptions::max_substeps):
+// 1024 substeps of the smallest h is still a step of 10^-9 s.
+constexpr int kMaxSubsteps = 1024;
 // Iterations per step (the slowest default, gradient_descent, is 50,000).
 constexpr int kMaxIterations = 1000000;
 // Ceres threads (each is a real thread).

@@ -1,15 +1,14 @@
 // Reading JSON input with strict validation: a JSON value together with its
 // key path ("springs[3].stiffness") and its source (a file name), so that
 // every check reports where it failed as one InputError "source: path: what".
-// The scene loader (problems/scene_loader.h) and every effect's parameters
-// (built-in or user-written, energies/effect_registry.h) are read with it.
+// The scene loader (problems/scene_loader.h, its solid: problems/solid_loader.h)
+// and every effect's parameters (built-in or user-written,
+// energies/effect_registry.h) are read with it; examples/tether/tether.cc:
 //
-//   void ReadTether(const nlohmann::json& parameters, const Scene& scene) {
-//     const JsonNode p(parameters, "tether", scene.source);
-//     p.ExpectObject({"stiffness", "anchor"});
-//     const double k = p.Get("stiffness").InRange(0.0, 1e12, "N/m", /*min_open=*/true);
-//     ...
-//   }
+//   const JsonNode tether(parameters, "tether", builder.scene().source);
+//   tether.ExpectObject({"stiffness", "point"});
+//   const double k = tether.Get("stiffness").InRange(0.0, 1e12, "N/m", /*min_open=*/true);
+//   if (const auto p = tether.Find("point")) ... p->Position(builder.scene().dimension) ...
 #pragma once
 
 #include <cstdint>

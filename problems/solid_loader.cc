@@ -8,6 +8,7 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "core/json_node.h"
 #include "mesh/gmsh_mesh.h"
 #include "mesh/mesh_boundary.h"
 #include "mesh/structured_mesh.h"
@@ -30,114 +31,90 @@ std::string Number(double v) {
   return buffer;
 }
 
-class Value {
- public:
-  Value(const json& value, std::string path, const std::string& source)
-      : value_(value), path_(std::move(path)), source_(source) {}
+// The solid's own checks on top of JsonNode, with the solid's messages (no
+// "got ..." for a wrong type, numbers as %g, ranges open or closed at
+// either end), which differ from JsonNode's.
 
-  [[noreturn]] void Fail(const std::string& what) const { throw InputError(source_, path_, what); }
+double Num(const JsonNode& node) {
+  if (!node.value().is_number()) node.Fail("must be a number");
+  const double v = node.value().get<double>();
+  if (!std::isfinite(v)) node.Fail("must be finite");
+  return v;
+}
 
-  void ExpectObject(const std::vector<std::string>& allowed) const {
-    if (!value_.is_object()) Fail("must be an object");
-    for (const auto& item : value_.items()) {
-      bool known = false;
-      for (const std::string& key : allowed) known |= key == item.key();
-      if (!known) {
-        std::string list;
-        for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
-        throw InputError(source_, path_ + "." + item.key(),
-                         "unknown key (allowed keys: " + list + ")");
-      }
-    }
+// (min, max) open or [min, max] closed at each end.
+double Range(const JsonNode& node, double min, double max, bool min_open, bool max_open,
+             const std::string& unit = "") {
+  const double v = Num(node);
+  const bool ok = (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
+  if (!ok) {
+    node.Fail("must be in " + std::string(min_open ? "(" : "[") + Number(min) + ", " + Number(max) +
+              (max_open ? ")" : "]") + (unit.empty() ? "" : " " + unit) + ", got " + Number(v));
   }
-  bool Has(const std::string& key) const { return value_.is_object() && value_.contains(key); }
-  Value Get(const std::string& key) const {
-    if (!Has(key)) throw InputError(source_, path_ + "." + key, "required key is missing");
-    return Value(value_.at(key), path_ + "." + key, source_);
-  }
-  double Num() const {
-    if (!value_.is_number()) Fail("must be a number");
-    const double v = value_.get<double>();
-    if (!std::isfinite(v)) Fail("must be finite");
-    return v;
-  }
-  // (min, max) open or [min, max] closed at each end.
-  double Range(double min, double max, bool min_open, bool max_open,
-               const std::string& unit = "") const {
-    const double v = Num();
-    const bool ok = (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
-    if (!ok) {
-      Fail("must be in " + std::string(min_open ? "(" : "[") + Number(min) + ", " + Number(max) +
-           (max_open ? ")" : "]") + (unit.empty() ? "" : " " + unit) + ", got " + Number(v));
-    }
-    return v;
-  }
-  std::string Str() const {
-    if (!value_.is_string()) Fail("must be a string");
-    return value_.get<std::string>();
-  }
-  int Int(int64_t min, int64_t max) const {
-    if (!value_.is_number_integer()) Fail("must be an integer");
-    const int64_t v = value_.get<int64_t>();
-    if (v < min || v > max) {
-      Fail("must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
-           "], got " + std::to_string(v));
-    }
-    return static_cast<int>(v);
-  }
-  std::vector<Value> Elements(size_t size = 0) const {
-    if (!value_.is_array() || (size > 0 && value_.size() != size)) {
-      Fail(size > 0 ? "must be an array of " + std::to_string(size) + " entries"
-                    : "must be an array");
-    }
-    std::vector<Value> list;
-    for (size_t i = 0; i < value_.size(); ++i) {
-      list.emplace_back(value_[i], path_ + "[" + std::to_string(i) + "]", source_);
-    }
-    return list;
-  }
-  // `size` coordinates within the coordinate range.
-  std::vector<double> Point(int size) const {
-    std::vector<double> p;
-    for (const Value& v : Elements(size)) {
-      p.push_back(v.Range(-limits::kMaxCoordinate, limits::kMaxCoordinate, false, false, "m"));
-    }
-    return p;
-  }
-  // `size` lengths > 0.
-  std::vector<double> Lengths(int size) const {
-    std::vector<double> p;
-    for (const Value& v : Elements(size)) {
-      p.push_back(v.Range(limits::kMinLength, limits::kMaxLength, false, false, "m"));
-    }
-    return p;
-  }
-  // A side or radius of a Gmsh shape (OpenCASCADE's tolerance sets the floor).
-  double GmshLength() const {
-    return Range(limits::kMinGmshLength, limits::kMaxLength, false, false,
-                 "m (Gmsh shapes: OpenCASCADE's tolerance is 1e-7 m)");
-  }
-  const std::string& path() const { return path_; }
+  return v;
+}
 
- private:
-  const json& value_;
-  std::string path_;
-  const std::string& source_;
-};
+std::string Str(const JsonNode& node) {
+  if (!node.value().is_string()) node.Fail("must be a string");
+  return node.value().get<std::string>();
+}
 
-SimplexMesh ReadStructured(const Value& mesh, int dim, std::string* description) {
-  const std::string shape = mesh.Get("shape").Str();
+int Int(const JsonNode& node, int64_t min, int64_t max) {
+  if (!node.value().is_number_integer()) node.Fail("must be an integer");
+  const int64_t v = node.value().get<int64_t>();
+  if (v < min || v > max) {
+    node.Fail("must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+              "], got " + std::to_string(v));
+  }
+  return static_cast<int>(v);
+}
+
+// The elements of an array (of exactly `size` entries if `size` > 0).
+std::vector<JsonNode> Entries(const JsonNode& node, size_t size = 0) {
+  if (!node.value().is_array() || (size > 0 && node.value().size() != size)) {
+    node.Fail(size > 0 ? "must be an array of " + std::to_string(size) + " entries"
+                       : "must be an array");
+  }
+  return node.Elements();
+}
+
+// `size` coordinates within the coordinate range.
+std::vector<double> Point(const JsonNode& node, int size) {
+  std::vector<double> p;
+  for (const JsonNode& v : Entries(node, size)) {
+    p.push_back(Range(v, -limits::kMaxCoordinate, limits::kMaxCoordinate, false, false, "m"));
+  }
+  return p;
+}
+
+// `size` lengths > 0.
+std::vector<double> Lengths(const JsonNode& node, int size) {
+  std::vector<double> p;
+  for (const JsonNode& v : Entries(node, size)) {
+    p.push_back(Range(v, limits::kMinLength, limits::kMaxLength, false, false, "m"));
+  }
+  return p;
+}
+
+// A side or radius of a Gmsh shape (OpenCASCADE's tolerance sets the floor).
+double GmshLength(const JsonNode& node) {
+  return Range(node, limits::kMinGmshLength, limits::kMaxLength, false, false,
+               "m (Gmsh shapes: OpenCASCADE's tolerance is 1e-7 m)");
+}
+
+SimplexMesh ReadStructured(const JsonNode& mesh, int dim, std::string* description) {
+  const std::string shape = Str(mesh.Get("shape"));
   const std::string expected = dim == 2 ? "rectangle" : "box";
   if (shape != expected) {
     mesh.Get("shape").Fail("must be \"" + expected + "\" in " + std::to_string(dim) + "D (got \"" +
                            ClipInput(shape) + "\")");
   }
   mesh.ExpectObject({"shape", "size", "cells", "origin"});
-  const std::vector<double> size = mesh.Get("size").Lengths(dim);
+  const std::vector<double> size = Lengths(mesh.Get("size"), dim);
   std::vector<int> cells;
   int64_t count = 1;
-  for (const Value& v : mesh.Get("cells").Elements(dim)) {
-    cells.push_back(v.Int(1, 100000));
+  for (const JsonNode& v : Entries(mesh.Get("cells"), dim)) {
+    cells.push_back(Int(v, 1, 100000));
     count *= cells.back();
   }
   if (count > kMaxCells) {
@@ -151,7 +128,7 @@ SimplexMesh ReadStructured(const Value& mesh, int dim, std::string* description)
                            std::to_string(limits::kMaxNodes));
   }
   std::vector<double> origin(dim, 0.0);
-  if (mesh.Has("origin")) origin = mesh.Get("origin").Point(dim);
+  if (mesh.Has("origin")) origin = Point(mesh.Get("origin"), dim);
   std::string cells_text = std::to_string(cells[0]);
   for (int k = 1; k < dim; ++k) cells_text += "x" + std::to_string(cells[k]);
   if (dim == 2) {
@@ -163,10 +140,10 @@ SimplexMesh ReadStructured(const Value& mesh, int dim, std::string* description)
                        {cells[0], cells[1], cells[2]});
 }
 
-SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) {
+SimplexMesh ReadGmshShape(const JsonNode& mesh, int dim, std::string* description) {
   GmshShape shape;
   shape.dimension = dim;
-  shape.name = mesh.Get("gmsh").Str();
+  shape.name = Str(mesh.Get("gmsh"));
   const bool box_like = shape.name == "rectangle" || shape.name == "box";
   const bool round = shape.name == "disk" || shape.name == "ball";
   const std::string box_name = dim == 2 ? "rectangle" : "box";
@@ -179,9 +156,9 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
   if (box_like) {
     mesh.ExpectObject({"gmsh", "size", "origin", "element_size"});
     std::vector<double> size;
-    for (const Value& v : mesh.Get("size").Elements(dim)) size.push_back(v.GmshLength());
+    for (const JsonNode& v : Entries(mesh.Get("size"), dim)) size.push_back(GmshLength(v));
     std::vector<double> origin(dim, 0.0);
-    if (mesh.Has("origin")) origin = mesh.Get("origin").Point(dim);
+    if (mesh.Has("origin")) origin = Point(mesh.Get("origin"), dim);
     for (int k = 0; k < dim; ++k) {
       shape.origin[k] = origin[k];
       shape.size[k] = size[k];
@@ -190,16 +167,15 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
   } else {
     mesh.ExpectObject({"gmsh", "center", "radius", "element_size"});
     std::vector<double> center(dim, 0.0);
-    if (mesh.Has("center")) center = mesh.Get("center").Point(dim);
+    if (mesh.Has("center")) center = Point(mesh.Get("center"), dim);
     for (int k = 0; k < dim; ++k) shape.origin[k] = center[k];
-    shape.radius = mesh.Get("radius").GmshLength();
+    shape.radius = GmshLength(mesh.Get("radius"));
     extent = 2.0 * shape.radius;
   }
   const double min_relative = dim == 2 ? kMinRelativeElementSize2D : kMinRelativeElementSize3D;
-  shape.element_size = mesh.Get("element_size")
-                           .Range(min_relative * extent, extent, false, false,
-                                  "m (between " + Number(min_relative) +
-                                      " times the shape's extent and the extent)");
+  shape.element_size =
+      Range(mesh.Get("element_size"), min_relative * extent, extent, false, false,
+            "m (between " + Number(min_relative) + " times the shape's extent and the extent)");
   SimplexMesh result;
   try {
     result = GmshGenerate(shape);
@@ -215,10 +191,10 @@ SimplexMesh ReadGmshShape(const Value& mesh, int dim, std::string* description) 
   return result;
 }
 
-SimplexMesh ReadMeshFile(const Value& mesh, int dim, const std::string& source,
+SimplexMesh ReadMeshFile(const JsonNode& mesh, int dim, const std::string& source,
                          std::string* description) {
   mesh.ExpectObject({"file"});
-  const std::string file = mesh.Get("file").Str();
+  const std::string file = Str(mesh.Get("file"));
   std::filesystem::path path(file);
   if (file.find('\0') != std::string::npos) {
     mesh.Get("file").Fail("the path contains a NUL byte (at offset " +
@@ -241,23 +217,23 @@ SimplexMesh ReadMeshFile(const Value& mesh, int dim, const std::string& source,
   return result;
 }
 
-SimplexMesh ReadExplicit(const Value& mesh, int dim, std::string* description) {
+SimplexMesh ReadExplicit(const JsonNode& mesh, int dim, std::string* description) {
   mesh.ExpectObject({"nodes", "elements"});
   SimplexMesh result;
   result.dimension = dim;
-  const std::vector<Value> nodes = mesh.Get("nodes").Elements();
+  const std::vector<JsonNode> nodes = Entries(mesh.Get("nodes"));
   if (static_cast<int64_t>(nodes.size()) > limits::kMaxNodes) {
     mesh.Get("nodes").Fail("lists " + std::to_string(nodes.size()) +
                            " nodes, more than the limit of " + std::to_string(limits::kMaxNodes));
   }
-  for (const Value& node : nodes) {
-    for (double c : node.Point(dim)) result.positions.push_back(c);
+  for (const JsonNode& node : nodes) {
+    for (double c : Point(node, dim)) result.positions.push_back(c);
   }
   const int n = static_cast<int>(nodes.size());
-  for (const Value& element : mesh.Get("elements").Elements()) {
+  for (const JsonNode& element : Entries(mesh.Get("elements"))) {
     std::array<int, 4> e = {-1, -1, -1, -1};
     int a = 0;
-    for (const Value& index : element.Elements(dim + 1)) e[a++] = index.Int(0, n - 1);
+    for (const JsonNode& index : Entries(element, dim + 1)) e[a++] = Int(index, 0, n - 1);
     result.elements.push_back(e);
   }
   AddStandardNodeSets(&result);
@@ -269,30 +245,31 @@ SimplexMesh ReadExplicit(const Value& mesh, int dim, std::string* description) {
 
 Solid ReadSolid(const json& value, int dimension, const std::string& source,
                 const std::string& path) {
-  const Value solid(value, path, source);
+  const JsonNode solid(value, path, source);
+  if (!value.is_object()) solid.Fail("must be an object");
   solid.ExpectObject(
       {"mesh", "model", "youngs_modulus", "poisson_ratio", "density", "plane", "masses"});
   Solid result;
   ElasticMaterial& material = result.material;
   if (solid.Has("model")) {
-    const std::string name = solid.Get("model").Str();
+    const std::string name = Str(solid.Get("model"));
     if (!ParseElasticModel(name, &material.model)) {
       solid.Get("model").Fail("unknown model \"" + ClipInput(name) +
                               "\" (known: neo_hookean, stvk, fixed_corotated, linear)");
     }
   }
-  material.youngs_modulus = solid.Get("youngs_modulus").Range(0.0, 1e15, true, false, "Pa");
-  material.poisson_ratio = solid.Get("poisson_ratio").Range(-1.0, 0.5, true, true);
+  material.youngs_modulus = Range(solid.Get("youngs_modulus"), 0.0, 1e15, true, false, "Pa");
+  material.poisson_ratio = Range(solid.Get("poisson_ratio"), -1.0, 0.5, true, true);
   if (material.model == ElasticModel::kFixedCorotated && material.poisson_ratio < 0.0) {
     solid.Get("poisson_ratio")
         .Fail(
             "must be >= 0 for fixed_corotated (its volume term lambda/2 (J - 1)^2 needs "
             "lambda >= 0)");
   }
-  material.density = solid.Get("density").Range(0.0, 1e12, true, false);
+  material.density = Range(solid.Get("density"), 0.0, 1e12, true, false);
   if (solid.Has("plane")) {
     if (dimension != 2) solid.Get("plane").Fail("is only allowed in 2D");
-    const std::string plane = solid.Get("plane").Str();
+    const std::string plane = Str(solid.Get("plane"));
     if (plane != "strain" && plane != "stress") {
       solid.Get("plane").Fail("must be \"strain\" or \"stress\" (got \"" + ClipInput(plane) +
                               "\")");
@@ -300,7 +277,7 @@ Solid ReadSolid(const json& value, int dimension, const std::string& source,
     material.plane_stress = plane == "stress";
   }
 
-  const Value mesh = solid.Get("mesh");
+  const JsonNode mesh = solid.Get("mesh");
   if (!mesh.Has("shape") && !mesh.Has("gmsh") && !mesh.Has("file") && !mesh.Has("nodes")) {
     mesh.Fail(
         "must be an object with one of \"shape\" (structured), \"gmsh\", \"file\", "
@@ -319,7 +296,7 @@ Solid ReadSolid(const json& value, int dimension, const std::string& source,
   if (!problem.empty()) mesh.Fail(problem);
 
   if (solid.Has("masses")) {
-    const std::string name = solid.Get("masses").Str();
+    const std::string name = Str(solid.Get("masses"));
     if (!ParseMassDistribution(name, &material.masses)) {
       solid.Get("masses").Fail("must be \"lumped\" or \"uniform\" (got \"" + ClipInput(name) +
                                "\")");

@@ -51,6 +51,11 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
     }
     steps_ = static_cast<int>(std::min(steps, static_cast<double>(limits::kMaxSteps) + 1.0));
   }
+  if (options.max_substeps < 1 || options.max_substeps > limits::kMaxSubsteps) {
+    throw InputError("options", "SimulationOptions.max_substeps",
+                     "must be in [1, " + std::to_string(limits::kMaxSubsteps) +
+                         "] (1: no retry), got " + std::to_string(options.max_substeps));
+  }
   if (!(options.accept_residual >= 0.0 && std::isfinite(options.accept_residual))) {
     throw InputError(
         "options", "SimulationOptions.accept_residual",

@@ -61,10 +61,12 @@ OptionTable<SimulationOptions> Build() {
                          0.0, 100.0, "");
   energy.set = SetField(&SimulationOptions::energy_tolerance);
   t.push_back(energy);
-  Row substeps = WithRange(Own("max_substeps", "max_substeps", OptionType::kInt, 1LL,
-                               "A failed step is retried from its start as 2, 4, ... substeps, "
-                               "up to this many; 1: no retry"),
-                           1, 1024, "");
+  Row substeps = WithRange(
+      Own("max_substeps", "max_substeps", OptionType::kInt,
+          static_cast<long long>(SimulationOptions().max_substeps),
+          "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
+          "1: no retry"),
+      1, limits::kMaxSubsteps, "");
   substeps.set = SetField(&SimulationOptions::max_substeps);
   t.push_back(substeps);
   t.push_back(Override("contact_kappa", "contact", "kappa", OptionType::kDouble, 0.0,

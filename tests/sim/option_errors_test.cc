@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "integrators/integrator.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
@@ -129,6 +130,22 @@ TEST(OptionErrors, SimulationOptionsNameTheirField) {
   options = {};
   options.integrator.name = "leapfrog";
   ExpectOptionError([&] { Simulation sim(scene, options); }, "IntegratorOptions.name");
+}
+
+// max_substeps is checked by the library itself, in the range its option
+// table gives (sim/simulation_option_table.h), not only by --max_substeps.
+TEST(OptionErrors, MaxSubstepsIsCheckedByTheLibrary) {
+  const Scene scene = testing::OscillatorScene();
+  for (const int substeps : {0, -3, limits::kMaxSubsteps + 1}) {
+    SimulationOptions options;
+    options.max_substeps = substeps;
+    ExpectOptionError([&] { Simulation sim(scene, options); }, "SimulationOptions.max_substeps");
+  }
+  for (const int substeps : {1, limits::kMaxSubsteps}) {
+    SimulationOptions options;
+    options.max_substeps = substeps;
+    EXPECT_NO_THROW(Simulation(scene, options)) << substeps;
+  }
 }
 
 // Dense BFGS on 100 x 100 nodes in 3D (30,000 free degrees of freedom): the
