@@ -11,6 +11,7 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "energies/effect_order.h"
 #include "energies/effect_registry.h"
 #include "energies/inertia.h"
 #include "energies/term_builder.h"
@@ -135,33 +136,8 @@ void Simulation::BuildPotential() {
       throw InputError(scene_.source, "effects", "effect '" + effect + "' is not registered");
     }
   }
-  // Scene order, except that an effect comes after those it needs
-  // (EffectInfo::needs) that the scene lists.
-  std::vector<size_t> order;
-  std::vector<bool> built(scene_.effects.size(), false);
-  while (order.size() < scene_.effects.size()) {
-    const size_t before = order.size();
-    for (size_t i = 0; i < scene_.effects.size(); ++i) {
-      if (built[i]) continue;
-      bool ready = true;
-      for (const std::string& need : registry.Get(scene_.effects[i]).needs) {
-        for (size_t j = 0; j < scene_.effects.size(); ++j) {
-          if (scene_.effects[j] == need && !built[j]) ready = false;
-        }
-      }
-      if (ready) {
-        built[i] = true;
-        order.push_back(i);
-        break;
-      }
-    }
-    if (order.size() == before) {
-      throw InputError(scene_.source, "effects",
-                       "the effects need each other in a cycle (EffectInfo::needs)");
-    }
-  }
   effect_summaries_.assign(scene_.effects.size(), "");
-  for (const size_t index : order) {
+  for (const size_t index : EffectBuildOrder(registry, scene_.effects, scene_.source)) {
     const std::string& effect = scene_.effects[index];
     auto it = scene_.effect_parameters.find(effect);
     nlohmann::json parameters =

@@ -9,6 +9,8 @@
 
 #include "contact/contact_effect.h"
 #include "core/input_error.h"
+#include "energies/effect_order.h"
+#include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
 #include "sim/simulation.h"
@@ -22,7 +24,7 @@ Scene Slope() {
   return LoadScene("slope", load);
 }
 
-Eigen::VectorXd Run(const Scene& scene, int steps, std::vector<std::string>* summaries) {
+Eigen::VectorXd RunSteps(const Scene& scene, int steps, std::vector<std::string>* summaries) {
   Simulation sim(scene, SimulationOptions{});
   for (int i = 0; i < steps; ++i) EXPECT_TRUE(sim.Step().converged) << "step " << i + 1;
   *summaries = sim.effect_summaries();
@@ -40,8 +42,8 @@ TEST(ContactEffect, FrictionBeforeContactInTheSceneIsTheSameSimulation) {
   std::iter_swap(swapped.effects.begin() + (contact - scene.effects.begin()),
                  swapped.effects.begin() + (friction - scene.effects.begin()));
   std::vector<std::string> listed, reordered;
-  const Eigen::VectorXd x = Run(scene, 20, &listed);
-  const Eigen::VectorXd y = Run(swapped, 20, &reordered);
+  const Eigen::VectorXd x = RunSteps(scene, 20, &listed);
+  const Eigen::VectorXd y = RunSteps(swapped, 20, &reordered);
   // Contact is built first either way: the same terms in the same order.
   EXPECT_EQ((x - y).cwiseAbs().maxCoeff(), 0.0);
   // The summaries follow the scene's order.
@@ -81,6 +83,29 @@ TEST(ContactEffect, FrictionWithoutContactNamesTheEffects) {
     const std::string message = e.what();
     EXPECT_NE(message.find("effects: \"friction\" needs \"contact\""), std::string::npos)
         << message;
+  }
+}
+
+TEST(EffectBuildOrder, AnEffectComesAfterWhatItNeedsAndACycleIsAnError) {
+  const EffectFactory none = [](TermBuilder&, const nlohmann::json&) -> std::unique_ptr<Effect> {
+    return std::make_unique<SummaryEffect>("");
+  };
+  EffectRegistry registry;
+  registry.Register("a", "", none, {"b"});
+  registry.Register("b", "", none);
+  registry.Register("c", "", none, {"a", "unlisted"});
+  EXPECT_EQ(EffectBuildOrder(registry, {"c", "a", "b"}, "s.json"),
+            (std::vector<size_t>{2, 1, 0}));  // b, a, c
+  EXPECT_EQ(EffectBuildOrder(registry, {"b", "c", "a"}, "s.json"),
+            (std::vector<size_t>{0, 2, 1}));  // b, a, c
+  EXPECT_EQ(EffectBuildOrder(registry, {"a"}, "s.json"), (std::vector<size_t>{0}));
+  registry.Register("d", "", none, {"e"});
+  registry.Register("e", "", none, {"d"});
+  try {
+    EffectBuildOrder(registry, {"b", "d", "e"}, "s.json");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("s.json: effects: ", 0), 0u) << e.what();
   }
 }
 
