@@ -8,9 +8,11 @@
 // exact Hessian from analytic curvature or central differences of the term's
 // Jacobian, eigenvalues floored at 1e-8 of the term's curvature scale; terms
 // with a Gauss-Newton model as Ceres builds it) is assembled into a sparse
-// matrix over the free degrees of freedom, factorised with
-// Eigen::SimplicialLDLT (AMD ordering, symbolic analysis once per term
-// structure) and the direction searched with Armijo backtracking (c = 1e-4,
+// matrix over the free degrees of freedom, factorised by the sparse Cholesky
+// of solver/sparse_cholesky.h (CHOLMOD LL^T by default, Eigen's SimplicialLDLT
+// with sparse_library EIGEN_SPARSE; symbolic analysis once per term
+// structure) or solved by conjugate gradients (linear_solver CG), and the
+// direction searched with Armijo backtracking (c = 1e-4,
 // halving) on the energy summed in extended precision. Trial points the
 // potential cannot evaluate (step filters, core/step_filter.h) are
 // backtracked from; with step filters the first trial step is capped at 0.9 of
@@ -29,13 +31,12 @@
 //
 // The projected model is the same model Ceres's newton and dogleg receive
 // (solver/newton_model_cost.h): the two differ in globalisation (trust region
-// against line search) and linear algebra (CXSparse Cholesky of J^T J against
-// Eigen's LDL^T of the assembled matrix), not in the Newton model.
+// against line search) and linear algebra (Ceres's sparse Cholesky of J^T J
+// against the factorisation of the assembled matrix), not in the Newton model.
 #pragma once
 
-#include <vector>
-
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
