@@ -64,7 +64,7 @@ std::vector<std::string> CheckedList(const char* flag, const char* option, const
     try {
       check(name);
     } catch (const InputError& error) {
-      if (std::string(error.what()).rfind(std::string(option) + ": ", 0) != 0) throw;
+      if (error.where() + ": " + error.key() != option) throw;
       const std::string near = NearMiss(name, candidates);
       throw InputError("flag", std::string("--") + flag,
                        "unknown " + std::string(what) + " '" + ClipInput(name) + "'" +

@@ -94,6 +94,16 @@ std::string FlagFor(const std::string& library_name) {
   return "";
 }
 
+std::string WithFlagNames(const InputError& error) {
+  if (error.key().empty()) return WithFlagNames(std::string(error.what()));
+  const std::string name = error.where() + ": " + error.key();  // "options: X.y[=v]"
+  const std::string flag = FlagFor(name);
+  if (flag.empty()) return error.what();
+  const size_t equals = error.key().find('=');
+  const std::string value = equals == std::string::npos ? "" : error.key().substr(equals);
+  return "flag: --" + flag + value + ": " + error.detail();
+}
+
 std::string WithFlagNames(const std::string& message) {
   const size_t kind_end = message.find(": ");
   if (kind_end == std::string::npos) return message;

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.h"
+
 namespace ipstep {
 
 struct FlagName {
@@ -44,5 +46,8 @@ std::string FlagFor(const std::string& library_name);
 // "options: OptimizerOptions.optimizer=bfgs: x" -> "flag: --optimizer=bfgs: x");
 // any other message unchanged.
 std::string WithFlagNames(const std::string& message);
+// The same from the error's parts (InputError::where, key, detail): no
+// parsing of the message; one without parts goes through the text.
+std::string WithFlagNames(const InputError& error);
 
 }  // namespace ipstep

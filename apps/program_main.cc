@@ -107,7 +107,7 @@ int ProgramMain(int argc, char** argv, const char* program, const char* usage,
     return e.kind() == OutputError::Kind::kOpen ? kInputErrorExitCode : kStepFailureExitCode;
   } catch (const InputError& e) {
     // The library names options, the programs name flags (apps/flag_names.h).
-    const std::string message = WithFlagNames(e.what());
+    const std::string message = WithFlagNames(e);
     std::fprintf(stderr, "%s: error: %s%s\n", program, message.c_str(),
                  OriginNote(message).c_str());
     return kInputErrorExitCode;

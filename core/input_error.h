@@ -28,11 +28,24 @@ inline std::string ClipInput(const std::string& text, size_t max = kMaxEchoedInp
 
 class InputError : public std::runtime_error {
  public:
-  // `where` names the file (or "flag"), `key` the key or flag name (cut with
-  // ClipInput).
+  // `where` names the file (or "flag", "options", "output"), `key` the key,
+  // flag or option (cut with ClipInput); what() is "where: key: what".
   InputError(const std::string& where, const std::string& key, const std::string& what)
-      : std::runtime_error(where + ": " + ClipInput(key) + ": " + what) {}
+      : std::runtime_error(where + ": " + ClipInput(key) + ": " + what),
+        where_(where),
+        key_(ClipInput(key)),
+        detail_(what) {}
+  // A message of its own form; where(), key() and detail() are empty.
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
+
+  // The parts of what(), for callers that map them (the programs name a flag
+  // for an option: apps/flag_names.h).
+  const std::string& where() const { return where_; }
+  const std::string& key() const { return key_; }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string where_, key_, detail_;
 };
 
 // Exit code used for every input error.

@@ -154,6 +154,33 @@ TEST(FlagNames, MessagesNameTheFlag) {
   }
 }
 
+// From the error's parts (InputError::where, key, detail) the same text as
+// from the message, without parsing it: a detail with ": " in it, a value
+// named with the option, an unmapped name, a message without parts.
+TEST(FlagNames, AnErrorsPartsNameTheFlag) {
+  const InputError tolerance("options", "OptimizerOptions.tolerance", "must be > 0: x");
+  EXPECT_EQ(tolerance.where(), "options");
+  EXPECT_EQ(tolerance.key(), "OptimizerOptions.tolerance");
+  EXPECT_EQ(tolerance.detail(), "must be > 0: x");
+  EXPECT_EQ(WithFlagNames(tolerance), "flag: --tolerance: must be > 0: x");
+  EXPECT_EQ(WithFlagNames(InputError("options", "OptimizerOptions.optimizer=bfgs", "too big")),
+            "flag: --optimizer=bfgs: too big");
+  EXPECT_EQ(WithFlagNames(InputError("output", "stats", "cannot write 'a'")),
+            "flag: --stats: cannot write 'a'");
+  const InputError scene("problems/cloth.json", "grid.nx", "must be >= 2");
+  EXPECT_EQ(WithFlagNames(scene), scene.what());
+  const InputError text("options: OptimizerOptions.tolerance: must be > 0");
+  EXPECT_TRUE(text.key().empty());
+  EXPECT_EQ(WithFlagNames(text), "flag: --tolerance: must be > 0");
+  // Parts and text agree on every mapped name.
+  for (const FlagName& row : FlagNames()) {
+    const std::string name = row.library_name;
+    const InputError e(name.substr(0, name.find(": ")), name.substr(name.find(": ") + 2), "bad");
+    EXPECT_EQ(WithFlagNames(e), WithFlagNames(std::string(e.what()))) << name;
+    EXPECT_EQ(WithFlagNames(e), "flag: --" + std::string(row.flag) + ": bad") << name;
+  }
+}
+
 // A library error as the library throws it, as the programs print it.
 TEST(FlagNames, ALibraryErrorBecomesAFlagError) {
   OptimizerOptions options;
