@@ -5,22 +5,14 @@
 #include "solver/projected_newton_solver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
+#include "core/scoped_timer.h"
+
 namespace ipstep {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 void ProjectedNewtonSolver::BuildStructure() {
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   const int dim = state_->dimension;
   free_index_.assign(state_->num_dofs(), -1);
   num_free_ = 0;
@@ -70,7 +62,7 @@ void ProjectedNewtonSolver::BuildStructure() {
   free_step_.resize(num_free_);
   analyzed_ = false;
   built_version_ = potential_->structure_version();
-  timings_.analyze += Since(start);
+  timings_.analyze += SecondsSince(start);
 }
 
 bool ProjectedNewtonSolver::TermLocalHessian(int t, const double* x, double weight,
@@ -123,7 +115,7 @@ bool ProjectedNewtonSolver::TermLocalHessian(int t, const double* x, double weig
 bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, TermHessian kind,
                                             const std::vector<char>* projected_terms) {
   if (built_version_ != potential_->structure_version()) BuildStructure();
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   const auto& terms = potential_->terms();
   const StepContext& context = potential_->context();
   const int n = static_cast<int>(terms.size());
@@ -146,13 +138,13 @@ bool ProjectedNewtonSolver::AssembleHessian(const Eigen::VectorXd& x, TermHessia
   });
   const bool ok = ScatterTermHessians();
   term_models_ += n;
-  timings_.hessian += Since(start);
+  timings_.hessian += SecondsSince(start);
   return ok;
 }
 
 bool ProjectedNewtonSolver::UpdateTermHessians(const Eigen::VectorXd& x,
                                                const std::vector<int>& terms, TermHessian kind) {
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   const StepContext& context = potential_->context();
   const auto& all = potential_->terms();
   const int n = static_cast<int>(terms.size());
@@ -168,7 +160,7 @@ bool ProjectedNewtonSolver::UpdateTermHessians(const Eigen::VectorXd& x,
   });
   term_models_ += n;
   const bool ok = ScatterTermHessians();
-  timings_.hessian += Since(start);
+  timings_.hessian += SecondsSince(start);
   return ok;
 }
 

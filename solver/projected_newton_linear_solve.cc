@@ -6,25 +6,16 @@
 #include "solver/projected_newton_solver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
+#include "core/scoped_timer.h"
 #include "solver/node_ordering.h"
 
 namespace ipstep {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 void ProjectedNewtonSolver::EnsureAnalyzed() {
   if (analyzed_) return;
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   const FillOrdering ordering = ordering_ == FillOrdering::kAutomatic
                                     ? ChooseOrdering(state_->dimension, num_free_)
                                     : ordering_;
@@ -45,7 +36,7 @@ void ProjectedNewtonSolver::EnsureAnalyzed() {
     if (static_cast<int>(permutation.size()) != num_free_) permutation.clear();
   }
   analyzed_ = cholesky_->Analyze(hessian_, permutation.empty() ? nullptr : &permutation);
-  timings_.analyze += Since(start);
+  timings_.analyze += SecondsSince(start);
 }
 
 bool ProjectedNewtonSolver::FactorizePositiveDefinite() {
@@ -55,7 +46,7 @@ bool ProjectedNewtonSolver::FactorizePositiveDefinite() {
 bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
                                              Eigen::VectorXd* direction) {
   if (use_cg_) {
-    const auto start = Clock::now();
+    const auto start = WallClock::now();
     for (int d = 0; d < state_->num_dofs(); ++d) {
       if (free_index_[d] >= 0) free_rhs_[free_index_[d]] = -gradient[d];
     }
@@ -66,11 +57,11 @@ bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
         if (free_index_[d] >= 0) (*direction)[d] = free_step_[free_index_[d]];
       }
     }
-    timings_.factorize += Since(start);
+    timings_.factorize += SecondsSince(start);
     return ok;
   }
   EnsureAnalyzed();
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   // PSD projection leaves H singular only without inertia (quasi-static, free
   // rigid modes): then a growing multiple of the identity is added.
   double max_diagonal = 0.0;
@@ -87,16 +78,16 @@ bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,
   }
   ok = ok && SolveFactorised(gradient, direction);
   if (!ok) direction->setZero(state_->num_dofs());
-  timings_.factorize += Since(start);
+  timings_.factorize += SecondsSince(start);
   return ok;
 }
 
 bool ProjectedNewtonSolver::DefiniteDirection(const Eigen::VectorXd& gradient,
                                               Eigen::VectorXd* direction) {
   EnsureAnalyzed();
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   const bool ok = FactorizePositiveDefinite() && SolveFactorised(gradient, direction);
-  timings_.factorize += Since(start);
+  timings_.factorize += SecondsSince(start);
   return ok;
 }
 

@@ -6,12 +6,12 @@
 #include "solver/projected_newton_solver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include "core/input_error.h"
+#include "core/scoped_timer.h"
 #include "core/stopping_rule.h"
 
 namespace ipstep {
@@ -26,12 +26,6 @@ constexpr int kMaxBacktracks = 60;
 // before every term is projected.
 constexpr double kProgressiveShrink = 0.25;
 constexpr int kProgressiveAttempts = 6;
-
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 }  // namespace
 
@@ -171,14 +165,14 @@ bool ProjectedNewtonSolver::NewtonDirection(const Eigen::VectorXd& x, Eigen::Vec
 }
 
 StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
-  const auto solve_start = Clock::now();
+  const auto solve_start = WallClock::now();
   if (built_version_ != potential_->structure_version()) BuildStructure();
   StepSolveResult result;
   potential_->NotifyAccepted(x->data());
   double energy = 0.0;
-  auto start = Clock::now();
+  auto start = WallClock::now();
   const bool evaluated = potential_->Evaluate(x->data(), &energy, gradient_.data());
-  timings_.gradient += Since(start);
+  timings_.gradient += SecondsSince(start);
   ++result.evaluations;
   if (!evaluated) {
     result.status = "energy cannot be evaluated at the initial guess";
@@ -199,7 +193,7 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       record.energy = energy;
       record.gradient_norm = gradient_.lpNorm<Eigen::Infinity>();
       record.step_size = alpha;
-      record.seconds = Since(solve_start);
+      record.seconds = SecondsSince(solve_start);
       record.residual = result.residual;
       sink_(record);
     }
@@ -212,7 +206,7 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       result.status = "iteration limit (" + std::to_string(max_iterations_) + ")";
       break;
     }
-    if (Since(solve_start) > time_limit_) {
+    if (SecondsSince(solve_start) > time_limit_) {
       result.status = "time limit: " + std::to_string(time_limit_) + " s";
       break;
     }
@@ -229,7 +223,7 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
       break;
     }
     ++result.iterations;
-    start = Clock::now();
+    start = WallClock::now();
     double slope = gradient_.dot(direction);
     const bool newton_direction = slope < 0.0;
     if (!newton_direction) {  // not a descent direction (round-off): steepest descent
@@ -265,17 +259,17 @@ StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
         break;
       }
     }
-    timings_.line_search += Since(start);
+    timings_.line_search += SecondsSince(start);
     if (!accepted) {
       result.status = "line search failed";
       break;
     }
     x->swap(trial_);
     potential_->NotifyAccepted(x->data());
-    start = Clock::now();
+    start = WallClock::now();
     ++result.evaluations;
     const bool ok = potential_->Evaluate(x->data(), &energy, gradient_.data());
-    timings_.gradient += Since(start);
+    timings_.gradient += SecondsSince(start);
     if (!ok) {
       result.status = "energy cannot be evaluated at an accepted iterate";
       result.residual = std::numeric_limits<double>::infinity();
