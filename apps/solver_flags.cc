@@ -8,6 +8,7 @@
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "sim/default_effects.h"
+#include "solver/optimizer_option_table.h"
 
 DEFINE_string(scene, "oscillator",
               "Built-in scene name (listed in --help) or path to a JSON scene file");
@@ -84,21 +85,38 @@ DEFINE_int32(grid_size, 0,
 namespace ipstep {
 namespace {
 
-// A flag of one optimiser family is an error with an optimiser of another.
-void RequireOptimizerFamily(const char* flag, OptimizerFamily family, Optimizer optimizer) {
-  if (FlagIsDefault(flag) || FamilyOf(optimizer) == family) return;
-  if (FamilyOf(optimizer) == OptimizerFamily::kEigenNewton &&
-      (std::string(flag) == "sparse_library" || std::string(flag) == "linear_solver_ordering" ||
-       std::string(flag) == "linear_solver")) {
-    return;  // the sparse Cholesky's flags apply to projected_newton too
+// The row of OptimizerOptions' table named `name` (solver/optimizer_option_table.h).
+const OptionRow<OptimizerOptions>& OptimizerRow(const char* name) {
+  const OptionRow<OptimizerOptions>* row = FindOption(OptimizerOptionTable(), name);
+  if (row == nullptr) throw std::logic_error(std::string("no option row ") + name);
+  return *row;
+}
+
+// A given flag whose unset value is a sentinel of the options, checked
+// against its row's range (and told what omitting it means).
+double FlagInRange(const char* name, double value) {
+  const OptionRow<OptimizerOptions>& row = OptimizerRow(name);
+  return CheckFlagRange(row.flag.c_str(), value, row.min, row.max, row.unit, row.default_meaning,
+                        row.min_open);
+}
+int FlagInRange(const char* name, int value) {
+  const OptionRow<OptimizerOptions>& row = OptimizerRow(name);
+  return CheckFlagRange(row.flag.c_str(), value, static_cast<int>(row.min),
+                        static_cast<int>(row.max), row.default_meaning);
+}
+
+// A given flag that its row says does not apply to the optimiser is an error
+// (the rows' order: the trust-region flags, the line-search flags, then
+// --hessian_projection).
+void RequireApplicableFlags(const OptimizerOptions& p) {
+  for (const OptionRow<OptimizerOptions>& row : OptimizerOptionTable()) {
+    if (!row.applies || row.flag.empty() || FlagIsDefault(row.flag.c_str())) continue;
+    std::string why = row.applies(p);
+    if (why.empty()) continue;
+    const size_t at = why.rfind("optimizer=");
+    if (at != std::string::npos) why.insert(at, "--");
+    throw InputError("flag", "--" + row.flag, why);
   }
-  const char* names = family == OptimizerFamily::kTrustRegion ? "newton, dogleg and gauss_newton"
-                      : family == OptimizerFamily::kLineSearch
-                          ? "lbfgs, bfgs, ncg and gradient_descent"
-                          : "projected_newton";
-  throw InputError(
-      "flag", std::string("--") + flag,
-      std::string("applies to ") + names + ", not to --optimizer=" + OptimizerName(optimizer));
 }
 
 }  // namespace
@@ -127,46 +145,21 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   p.mass_scaled_coordinates = FLAGS_mass_scaled_coordinates;
   p.precise_line_search_energy = FLAGS_precise_energy;
   p.hessian_projection = ParseHessianProjection(FLAGS_hessian_projection);
-  for (const char* flag : {"linear_solver", "sparse_library", "linear_solver_ordering",
-                           "trust_region_radius", "backtrack_rejected_steps"}) {
-    RequireOptimizerFamily(flag, OptimizerFamily::kTrustRegion, p.optimizer);
-  }
-  for (const char* flag :
-       {"line_search", "nonlinear_cg", "lbfgs_rank", "mass_scaled_coordinates"}) {
-    RequireOptimizerFamily(flag, OptimizerFamily::kLineSearch, p.optimizer);
-  }
-  if (!FlagIsDefault("hessian_projection") && !UsesNewtonModel(p.optimizer)) {
-    throw InputError("flag", "--hessian_projection",
-                     std::string("applies to newton, dogleg and projected_newton, not to "
-                                 "--optimizer=") +
-                         OptimizerName(p.optimizer));
-  }
+  RequireApplicableFlags(p);
   // Flags whose unset value is a sentinel of the options (0 or -1: the
   // default) are used only when given, and then must be in range: an explicit
   // --dt=0 is an error, not the scene's time step.
+  // Ranges and what omitting the flag means: the option table's rows.
   if (!FlagIsDefault("max_iterations")) {
-    p.max_iterations =
-        CheckFlagRange("max_iterations", FLAGS_max_iterations, 1, limits::kMaxIterations,
-                       "the optimizer's default: newton/dogleg/gauss_newton/projected_newton "
-                       "100, lbfgs/bfgs 5000, ncg 20000, gradient_descent 50000");
+    p.max_iterations = FlagInRange("max_iterations", FLAGS_max_iterations);
   }
-  if (!FlagIsDefault("time_limit")) {
-    p.time_limit = CheckFlagRange("time_limit", FLAGS_time_limit, 0.0, limits::kMaxTimeLimit, "s",
-                                  "no limit", /*min_open=*/true);
-  }
-  if (!FlagIsDefault("num_threads")) {
-    p.num_threads = CheckFlagRange("num_threads", FLAGS_num_threads, 1, limits::kMaxThreads,
-                                   "the machine's hardware threads");
-  }
+  if (!FlagIsDefault("time_limit")) p.time_limit = FlagInRange("time_limit", FLAGS_time_limit);
+  if (!FlagIsDefault("num_threads")) p.num_threads = FlagInRange("num_threads", FLAGS_num_threads);
   if (!FlagIsDefault("trust_region_radius")) {
-    p.initial_trust_region_radius = CheckFlagRange(
-        "trust_region_radius", FLAGS_trust_region_radius, limits::kMinTrustRegionRadius,
-        limits::kMaxTrustRegionRadius, "", "newton and gauss_newton 1e16, dogleg 1e4");
+    p.initial_trust_region_radius =
+        FlagInRange("initial_trust_region_radius", FLAGS_trust_region_radius);
   }
-  if (!FlagIsDefault("lbfgs_rank")) {
-    p.lbfgs_rank =
-        CheckFlagRange("lbfgs_rank", FLAGS_lbfgs_rank, 1, limits::kMaxLbfgsRank, "the rank 20");
-  }
+  if (!FlagIsDefault("lbfgs_rank")) p.lbfgs_rank = FlagInRange("lbfgs_rank", FLAGS_lbfgs_rank);
   ValidateOptimizerOptions(p);
   if (!FlagIsDefault("dt")) {
     o.time_step = CheckFlagRange("dt", FLAGS_dt, limits::kMinTimeStep, limits::kMaxTimeStep, "s",

@@ -66,4 +66,23 @@ OptionValue CheckOptionValue(const std::string& field, OptionType type, bool has
   return checked;
 }
 
+void CheckOptionRange(const std::string& field, bool min_open, double min, double max,
+                      const std::string& unit, const OptionValue& default_value,
+                      const std::string& default_meaning, const OptionValue& value) {
+  if (!default_meaning.empty() && value == default_value) return;  // the sentinel
+  const double x = std::holds_alternative<long long>(value)
+                       ? static_cast<double>(std::get<long long>(value))
+                       : std::get<double>(value);
+  if (x >= min && x <= max && !(min_open && x == min)) return;
+  // The field is a table's row's (tests/apps/flag_names_test.cc counts the
+  // tables' fields among the names the library reports).
+  const std::string where = "options";
+  throw InputError(where, field,
+                   "must be in " + limits::RangeText(min, max, unit, min_open) +
+                       (default_meaning.empty() ? ""
+                                                : " (" + OptionValueText(default_value) + ": " +
+                                                      default_meaning + ")") +
+                       ", got " + OptionValueText(value));
+}
+
 }  // namespace ipstep

@@ -48,8 +48,12 @@ struct OptionRow {
   // Stores a value of `type` (already checked) in the struct; may throw
   // InputError (an unknown name of a choice).
   std::function<void(const OptionValue& value, Options* options)> set;
+  // Reads the option's value from the struct, for the library's own range
+  // check (CheckOptionRanges); set with `set` by BindField. Null: the row's
+  // value is not a plain field (effect overrides).
+  std::function<OptionValue(const Options& options)> get;
   // "" or why the option, given, does not apply to `options` ("applies to
-  // newton, dogleg and gauss_newton, not to optimizer=lbfgs").
+  // newton, dogleg, gauss_newton and projected_newton, not to optimizer=lbfgs").
   std::function<std::string(const Options& options)> applies;
 };
 
@@ -61,6 +65,27 @@ using OptionTable = std::vector<OptionRow<Options>>;
 OptionValue CheckOptionValue(const std::string& field, OptionType type, bool has_range, double min,
                              double max, bool min_open, const std::string& unit,
                              const std::string& default_meaning, const OptionValue& value);
+
+// `value` (an option's current value in its struct) against its row's range:
+// in range, or the struct's default when that is a sentinel (`default_meaning`
+// says what it stands for: max_iterations 0, "the optimizer's default");
+// otherwise throws InputError naming `field` ("must be in [1, 1000] (0: the
+// rank 20), got -1"). Non-finite numbers are out of every range.
+void CheckOptionRange(const std::string& field, bool min_open, double min, double max,
+                      const std::string& unit, const OptionValue& default_value,
+                      const std::string& default_meaning, const OptionValue& value);
+
+// The library's validation of a struct's ranged options: every row with a
+// range and a `get`, checked as CheckOptionRange does. The range, unit and
+// sentinel meaning of an option are its row's, written once.
+template <class Options>
+void CheckOptionRanges(const OptionTable<Options>& table, const Options& options) {
+  for (const OptionRow<Options>& row : table) {
+    if (!row.has_range || !row.get) continue;
+    CheckOptionRange(row.field, row.min_open, row.min, row.max, row.unit, row.default_value,
+                     row.default_meaning, row.get(options));
+  }
+}
 
 // Sets option `row` on `options` (checked as above).
 template <class Options>
@@ -102,6 +127,10 @@ OptionTable<Outer> LiftOptions(const OptionTable<Inner>& rows, Inner Outer::*mem
     r.set = [set, member](const OptionValue& value, Outer* outer) {
       set(value, &(outer->*member));
     };
+    if (row.get) {
+      const auto get = row.get;
+      r.get = [get, member](const Outer& outer) { return get(outer.*member); };
+    }
     if (row.applies) {
       const auto applies = row.applies;
       r.applies = [applies, member](const Outer& outer) { return applies(outer.*member); };
@@ -125,6 +154,26 @@ std::function<void(const OptionValue&, Options*)> SetField(Field Options::*membe
       options->*member = std::get<double>(value);
     }
   };
+}
+
+template <class Options, class Field>
+std::function<OptionValue(const Options&)> GetField(Field Options::*member) {
+  return [member](const Options& options) -> OptionValue {
+    if constexpr (std::is_same_v<Field, std::string> || std::is_same_v<Field, bool>) {
+      return options.*member;
+    } else if constexpr (std::is_integral_v<Field>) {
+      return static_cast<long long>(options.*member);
+    } else {
+      return static_cast<double>(options.*member);
+    }
+  };
+}
+
+// The row reads and writes `member` (set and get).
+template <class Options, class Field>
+void BindField(Field Options::*member, OptionRow<Options>* row) {
+  row->set = SetField(member);
+  row->get = GetField(member);
 }
 
 template <class Options>

@@ -8,7 +8,7 @@ OptionTable<IntegratorOptions> Build() {
   OptionRow<IntegratorOptions> name = MakeOptionRow<IntegratorOptions>(
       "integrator", "IntegratorOptions.name", "integrator", OptionType::kString,
       std::string("backward_euler"), "backward_euler | newmark | quasi_static | symplectic_euler");
-  name.set = SetField(&IntegratorOptions::name);
+  BindField(&IntegratorOptions::name, &name);
   t.push_back(name);
   const auto newmark_only = [](const IntegratorOptions& o) -> std::string {
     return o.name == "newmark" ? "" : "applies to integrator=newmark only";
@@ -18,7 +18,7 @@ OptionTable<IntegratorOptions> Build() {
                                                  "newmark_beta", OptionType::kDouble, 0.25,
                                                  "Newmark beta (integrators/newmark.h)"),
                 1e-3, 1.0, "");
-  beta.set = SetField(&IntegratorOptions::newmark_beta);
+  BindField(&IntegratorOptions::newmark_beta, &beta);
   beta.applies = newmark_only;
   t.push_back(beta);
   OptionRow<IntegratorOptions> gamma =
@@ -26,7 +26,7 @@ OptionTable<IntegratorOptions> Build() {
                                                  "newmark_gamma", OptionType::kDouble, 0.5,
                                                  "Newmark gamma (integrators/newmark.h)"),
                 0.5, 1.0, "");
-  gamma.set = SetField(&IntegratorOptions::newmark_gamma);
+  BindField(&IntegratorOptions::newmark_gamma, &gamma);
   gamma.applies = newmark_only;
   t.push_back(gamma);
   return t;

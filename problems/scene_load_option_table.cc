@@ -11,7 +11,7 @@ const OptionTable<SceneLoadOptions>& SceneLoadOptionTable() {
                       "grid_size", "SceneLoadOptions.grid_size", "grid_size", OptionType::kInt, 0LL,
                       "Override the node count per side of a scene's grid"),
                   2, limits::kMaxGridSize, "", "the scene's size");
-    grid.set = SetField(&SceneLoadOptions::grid_size);
+    BindField(&SceneLoadOptions::grid_size, &grid);
     return OptionTable<SceneLoadOptions>{grid};
   }();
   return table;

@@ -42,24 +42,24 @@ OptionTable<SimulationOptions> Build() {
   Row time_step =
       WithRange(Own("time_step", "dt", OptionType::kDouble, 0.0, "Time step [s]"),
                 limits::kMinTimeStep, limits::kMaxTimeStep, "s", "the scene's time_step");
-  time_step.set = SetField(&SimulationOptions::time_step);
+  BindField(&SimulationOptions::time_step, &time_step);
   t.push_back(time_step);
   Row steps = WithRange(Own("steps", "steps", OptionType::kInt, -1LL, "Number of steps"), 0,
                         limits::kMaxSteps, "", "the scene's steps");
-  steps.set = SetField(&SimulationOptions::steps);
+  BindField(&SimulationOptions::steps, &steps);
   t.push_back(steps);
   Row t_end = WithRange(Own("t_end", "t_end", OptionType::kDouble, 0.0,
                             "End time [s]: t_end / time_step steps (a whole number); not with "
                             "steps"),
                         0.0, limits::kMaxSteps * limits::kMaxTimeStep, "s", "the scene's steps",
                         /*min_open=*/true);
-  t_end.set = SetField(&SimulationOptions::t_end);
+  BindField(&SimulationOptions::t_end, &t_end);
   t.push_back(t_end);
   Row energy = WithRange(Own("energy_tolerance", "energy_tolerance", OptionType::kDouble, 0.1,
                              "A step whose energy grows by more than this fraction of the energy "
                              "in motion fails with status 'energy growth'; 0: no check"),
                          0.0, 100.0, "");
-  energy.set = SetField(&SimulationOptions::energy_tolerance);
+  BindField(&SimulationOptions::energy_tolerance, &energy);
   t.push_back(energy);
   Row substeps = WithRange(
       Own("max_substeps", "max_substeps", OptionType::kInt,
@@ -67,7 +67,7 @@ OptionTable<SimulationOptions> Build() {
           "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
           "1: no retry"),
       1, limits::kMaxSubsteps, "");
-  substeps.set = SetField(&SimulationOptions::max_substeps);
+  BindField(&SimulationOptions::max_substeps, &substeps);
   t.push_back(substeps);
   t.push_back(Override("contact_kappa", "contact", "kappa", OptionType::kDouble, 0.0,
                        limits::kMaxKappa, "", true,
@@ -98,19 +98,19 @@ const OptionTable<RunOptions>& RunOptionTable() {
         "stop_on_failure", "RunOptions.stop_on_failure", "", OptionType::kBool, false,
         "Stop at the first step that fails (also as substeps); otherwise failed steps are "
         "counted and the run goes on (the ipstep program sets it unless told to continue)");
-    stop.set = SetField(&RunOptions::stop_on_failure);
+    BindField(&RunOptions::stop_on_failure, &stop);
     t.push_back(stop);
     OptionRow<RunOptions> diverge = MakeOptionRow<RunOptions>(
         "stop_on_divergence", "RunOptions.stop_on_divergence", "", OptionType::kBool, true,
         "Stop at the first diverged step (sim/divergence.h)");
-    diverge.set = SetField(&RunOptions::stop_on_divergence);
+    BindField(&RunOptions::stop_on_divergence, &diverge);
     t.push_back(diverge);
     OptionRow<RunOptions> wall =
         WithRange(MakeOptionRow<RunOptions>(
                       "max_wall_seconds", "RunOptions.max_wall_seconds", "", OptionType::kDouble,
                       0.0, "Stop once the run has taken this long [s] with steps left"),
                   0.0, limits::kMaxTimeLimit, "s", "no limit", /*min_open=*/true);
-    wall.set = SetField(&RunOptions::max_wall_seconds);
+    BindField(&RunOptions::max_wall_seconds, &wall);
     t.push_back(wall);
     return t;
   }();
@@ -129,31 +129,31 @@ const OptionTable<AdaptiveOptions>& AdaptiveOptionTable() {
                                   "The position error [m] to reach at the end time"),
                               0.0, 1e6, "m", "none: an adaptive run must give it",
                               /*min_open=*/true);
-    tolerance.set = SetField(&AdaptiveOptions::error_tolerance);
+    BindField(&AdaptiveOptions::error_tolerance, &tolerance);
     t.push_back(tolerance);
     Row min_h =
         WithRange(own("min_time_step", "min_dt", 0.0, "The smallest step [s]"),
                   limits::kMinTimeStep, limits::kMaxTimeStep, "s", "max(1e-12, 1e-9 t_end)");
-    min_h.set = SetField(&AdaptiveOptions::min_time_step);
+    BindField(&AdaptiveOptions::min_time_step, &min_h);
     t.push_back(min_h);
     Row max_h = WithRange(own("max_time_step", "max_dt", 0.0, "The largest step [s]"),
                           limits::kMinTimeStep, limits::kMaxTimeStep, "s", "t_end / 10");
-    max_h.set = SetField(&AdaptiveOptions::max_time_step);
+    BindField(&AdaptiveOptions::max_time_step, &max_h);
     t.push_back(max_h);
     Row safety = WithRange(own("safety", "", 0.9, "The controller's safety factor s"), 0.0, 1.0, "",
                            "", /*min_open=*/true);
-    safety.set = SetField(&AdaptiveOptions::safety);
+    BindField(&AdaptiveOptions::safety, &safety);
     t.push_back(safety);
     Row growth =
         WithRange(own("max_growth", "", 2.0, "The largest growth h'/h after an accepted step"), 1.0,
                   10.0, "");
-    growth.set = SetField(&AdaptiveOptions::max_growth);
+    BindField(&AdaptiveOptions::max_growth, &growth);
     t.push_back(growth);
     // (0, 1): a rejection shrinks the step; ValidateAdaptiveOptions refuses 1.
     Row shrink =
         WithRange(own("max_shrink", "", 0.2, "The smallest factor h'/h of a rejected step"), 0.0,
                   1.0, "", "", /*min_open=*/true);
-    shrink.set = SetField(&AdaptiveOptions::max_shrink);
+    BindField(&AdaptiveOptions::max_shrink, &shrink);
     t.push_back(shrink);
     return t;
   }();

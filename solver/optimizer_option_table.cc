@@ -19,12 +19,13 @@ std::function<std::string(const OptimizerOptions&)> Family(OptimizerFamily famil
   return [family, sparse_cholesky](const OptimizerOptions& o) -> std::string {
     const OptimizerFamily given = FamilyOf(o.optimizer);
     if (given == family || (sparse_cholesky && given == OptimizerFamily::kEigenNewton)) return "";
-    const char* names = family == OptimizerFamily::kTrustRegion ? "newton, dogleg and gauss_newton"
+    const char* names = family == OptimizerFamily::kTrustRegion
+                            ? (sparse_cholesky ? "newton, dogleg, gauss_newton and projected_newton"
+                                               : "newton, dogleg and gauss_newton")
                         : family == OptimizerFamily::kLineSearch
                             ? "lbfgs, bfgs, ncg and gradient_descent"
                             : "projected_newton";
-    return std::string("applies to ") + names + (sparse_cholesky ? " and projected_newton" : "") +
-           ", not to optimizer=" + OptimizerName(o.optimizer);
+    return std::string("applies to ") + names + ", not to optimizer=" + OptimizerName(o.optimizer);
   };
 }
 
@@ -42,7 +43,7 @@ OptionTable<OptimizerOptions> Build() {
       Make("tolerance", "tolerance", OptionType::kDouble, 1e-5,
            "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step, > 0");
   tolerance.unit = "m/s";
-  tolerance.set = SetField(&OptimizerOptions::tolerance);
+  BindField(&OptimizerOptions::tolerance, &tolerance);
   t.push_back(tolerance);
   Row max_iterations = WithRange(
       Make("max_iterations", "max_iterations", OptionType::kInt, 0LL,
@@ -50,38 +51,38 @@ OptionTable<OptimizerOptions> Build() {
       1, limits::kMaxIterations, "",
       "the optimizer's default: newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, "
       "ncg 20000, gradient_descent 50000");
-  max_iterations.set = SetField(&OptimizerOptions::max_iterations);
+  BindField(&OptimizerOptions::max_iterations, &max_iterations);
   t.push_back(max_iterations);
   Row time_limit = WithRange(
       Make("time_limit", "time_limit", OptionType::kDouble, 0.0, "Wall-time limit per step [s]"),
       0.0, limits::kMaxTimeLimit, "s", "no limit", /*min_open=*/true);
-  time_limit.set = SetField(&OptimizerOptions::time_limit);
+  BindField(&OptimizerOptions::time_limit, &time_limit);
   t.push_back(time_limit);
   Row threads = WithRange(
       Make("num_threads", "num_threads", OptionType::kInt, 0LL,
            "Threads for the terms' energies, gradients and Newton models (the same iterates for "
            "any count) and Ceres's own evaluation (gauss_newton)"),
       1, limits::kMaxThreads, "", "the machine's hardware threads");
-  threads.set = SetField(&OptimizerOptions::num_threads);
+  BindField(&OptimizerOptions::num_threads, &threads);
   t.push_back(threads);
   Row linear_solver =
       Make("linear_solver", "linear_solver", OptionType::kString, std::string(),
            "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY); "
            "projected_newton: SPARSE_CHOLESKY (default) | CG");
-  linear_solver.set = SetField(&OptimizerOptions::linear_solver);
+  BindField(&OptimizerOptions::linear_solver, &linear_solver);
   linear_solver.applies = Family(OptimizerFamily::kTrustRegion, true);
   t.push_back(linear_solver);
   Row sparse = Make("sparse_library", "sparse_library", OptionType::kString, std::string(),
                     "Sparse Cholesky library: SUITE_SPARSE (default) | CX_SPARSE | EIGEN_SPARSE "
                     "(projected_newton: SUITE_SPARSE | EIGEN_SPARSE)");
-  sparse.set = SetField(&OptimizerOptions::sparse_library);
+  BindField(&OptimizerOptions::sparse_library, &sparse);
   sparse.applies = Family(OptimizerFamily::kTrustRegion, true);
   t.push_back(sparse);
   Row ordering =
       Make("linear_solver_ordering", "linear_solver_ordering", OptionType::kString, std::string(),
            "Fill-reducing ordering of the sparse Cholesky: AMD | NESDIS; default: NESDIS for 3D "
            "solids of 20000 free DOFs or more, AMD otherwise");
-  ordering.set = SetField(&OptimizerOptions::linear_solver_ordering);
+  BindField(&OptimizerOptions::linear_solver_ordering, &ordering);
   ordering.applies = Family(OptimizerFamily::kTrustRegion, true);
   t.push_back(ordering);
   Row radius =
@@ -89,41 +90,41 @@ OptionTable<OptimizerOptions> Build() {
                      "newton/dogleg/gauss_newton: initial trust-region radius"),
                 limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius, "",
                 "newton and gauss_newton 1e16, dogleg 1e4");
-  radius.set = SetField(&OptimizerOptions::initial_trust_region_radius);
+  BindField(&OptimizerOptions::initial_trust_region_radius, &radius);
   radius.applies = Family(OptimizerFamily::kTrustRegion);
   t.push_back(radius);
   Row backtrack =
       Make("backtrack_rejected_steps", "backtrack_rejected_steps", OptionType::kBool, true,
            "newton/dogleg/gauss_newton: backtrack along a rejected trial step and "
            "restart Ceres from there (false: Ceres only shrinks its trust region)");
-  backtrack.set = SetField(&OptimizerOptions::backtrack_rejected_steps);
+  BindField(&OptimizerOptions::backtrack_rejected_steps, &backtrack);
   backtrack.applies = Family(OptimizerFamily::kTrustRegion);
   t.push_back(backtrack);
   Row line_search = Make("line_search", "line_search", OptionType::kString, std::string(),
                          "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
-  line_search.set = SetField(&OptimizerOptions::line_search);
+  BindField(&OptimizerOptions::line_search, &line_search);
   line_search.applies = Family(OptimizerFamily::kLineSearch);
   t.push_back(line_search);
   Row ncg = Make("nonlinear_cg", "nonlinear_cg", OptionType::kString, std::string(),
                  "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIEFEL (default "
                  "FLETCHER_REEVES)");
-  ncg.set = SetField(&OptimizerOptions::nonlinear_cg);
+  BindField(&OptimizerOptions::nonlinear_cg, &ncg);
   ncg.applies = Family(OptimizerFamily::kLineSearch);
   t.push_back(ncg);
   Row rank = WithRange(
       Make("lbfgs_rank", "lbfgs_rank", OptionType::kInt, 0LL, "lbfgs: number of correction pairs"),
       1, limits::kMaxLbfgsRank, "", "the rank 20");
-  rank.set = SetField(&OptimizerOptions::lbfgs_rank);
+  BindField(&OptimizerOptions::lbfgs_rank, &rank);
   rank.applies = Family(OptimizerFamily::kLineSearch);
   t.push_back(rank);
   Row scaled = Make("mass_scaled_coordinates", "mass_scaled_coordinates", OptionType::kBool, true,
                     "line-search optimizers: work in z = sqrt(m) x / h (kinetic-energy metric)");
-  scaled.set = SetField(&OptimizerOptions::mass_scaled_coordinates);
+  BindField(&OptimizerOptions::mass_scaled_coordinates, &scaled);
   scaled.applies = Family(OptimizerFamily::kLineSearch);
   t.push_back(scaled);
   Row precise = Make("precise_line_search_energy", "precise_energy", OptionType::kBool, true,
                      "line-search optimizers: sum energies in extended precision");
-  precise.set = SetField(&OptimizerOptions::precise_line_search_energy);
+  BindField(&OptimizerOptions::precise_line_search_energy, &precise);
   t.push_back(precise);
   Row projection =
       Make("hessian_projection", "hessian_projection", OptionType::kString, std::string("default"),

@@ -6,6 +6,7 @@
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/thread_pool.h"
+#include "solver/optimizer_option_table.h"
 
 namespace ipstep {
 namespace {
@@ -216,39 +217,16 @@ FillOrdering ParseFillOrdering(const std::string& name) {
                    "unknown ordering '" + name + "' (AMD or NESDIS)");
 }
 
-// 0 (and for the radius any value <= 0) still means "the default" here; the
+// The ranges of max_iterations, time_limit, num_threads,
+// initial_trust_region_radius and lbfgs_rank, and what their 0 stands for,
+// are their rows' in the option table (solver/optimizer_option_table.cc); the
 // programs reject an explicit 0 at the flags layer (apps/solver_flags.cc).
 void ValidateOptimizerOptions(const OptimizerOptions& o) {
   if (!std::isfinite(o.tolerance) || o.tolerance <= 0.0) {
     throw InputError("options", "OptimizerOptions.tolerance",
                      "must be a finite number > 0, got " + std::to_string(o.tolerance));
   }
-  if (o.max_iterations < 0 || o.max_iterations > limits::kMaxIterations) {
-    throw InputError("options", "OptimizerOptions.max_iterations",
-                     "must be in [1, " + std::to_string(limits::kMaxIterations) +
-                         "] (0: the optimizer's default), got " + std::to_string(o.max_iterations));
-  }
-  if (!(o.time_limit >= 0.0 && o.time_limit <= limits::kMaxTimeLimit)) {
-    throw InputError("options", "OptimizerOptions.time_limit",
-                     "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s", true) +
-                         " (0: none), got " + limits::FormatLimit(o.time_limit));
-  }
-  if (o.num_threads < 0 || o.num_threads > limits::kMaxThreads) {
-    throw InputError("options", "OptimizerOptions.num_threads",
-                     "must be in [1, " + std::to_string(limits::kMaxThreads) +
-                         "] (0: the machine's hardware threads), got " +
-                         std::to_string(o.num_threads));
-  }
-  const double radius = o.initial_trust_region_radius;
-  if (!std::isfinite(radius) || radius < 0.0 ||
-      (radius > 0.0 &&
-       (radius < limits::kMinTrustRegionRadius || radius > limits::kMaxTrustRegionRadius))) {
-    throw InputError(
-        "options", "OptimizerOptions.initial_trust_region_radius",
-        "must be in " +
-            limits::RangeText(limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius) +
-            " (0: the default), got " + limits::FormatLimit(radius));
-  }
+  CheckOptionRanges(OptimizerOptionTable(), o);
   ParseFillOrdering(o.linear_solver_ordering);
   if (o.optimizer == Optimizer::kProjectedNewton) {
     if (ResolveHessianProjection(o) == HessianProjection::kInertia) {
@@ -270,11 +248,6 @@ void ValidateOptimizerOptions(const OptimizerOptions& o) {
                          " needs the assembled Hessian: projected_newton only (" +
                          OptimizerName(o.optimizer) +
                          " takes always, abs, trust_region or inertia)");
-  }
-  if (o.lbfgs_rank < 0 || o.lbfgs_rank > limits::kMaxLbfgsRank) {
-    throw InputError("options", "OptimizerOptions.lbfgs_rank",
-                     "must be in [1, " + std::to_string(limits::kMaxLbfgsRank) +
-                         "] (0: default 20), got " + std::to_string(o.lbfgs_rank));
   }
 }
 

@@ -192,5 +192,33 @@ TEST(OptionTable, ValuesAreCheckedAndStored) {
   EXPECT_NO_THROW(CheckOptionsApply(o, {"lbfgs_rank"}));
 }
 
+// The library validates a struct's ranged options by its table's rows
+// (CheckOptionRanges): each ranged optimizer option past its row's maximum is
+// an error naming the row's field, its maximum and its sentinel default are not.
+TEST(OptionTable, TheLibrarysRangeChecksAreTheRows) {
+  int checked = 0;
+  for (const OptionRow<OptimizerOptions>& row : OptimizerOptionTable()) {
+    if (!row.has_range || !row.get) continue;
+    ++checked;
+    const auto value = [&row](double x) {
+      return row.type == OptionType::kInt ? OptionValue(static_cast<long long>(x)) : OptionValue(x);
+    };
+    OptimizerOptions options;
+    row.set(value(row.max * 2.0), &options);
+    try {
+      ValidateOptimizerOptions(options);
+      ADD_FAILURE() << row.name << " above its maximum was accepted";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.key(), row.field) << error.what();
+      EXPECT_NE(error.detail().find("must be in"), std::string::npos) << error.what();
+    }
+    row.set(value(row.max), &options);
+    EXPECT_NO_THROW(ValidateOptimizerOptions(options)) << row.name;
+    row.set(row.default_value, &options);
+    EXPECT_NO_THROW(ValidateOptimizerOptions(options)) << row.name;
+  }
+  EXPECT_EQ(checked, 5);  // max_iterations, time_limit, num_threads, radius, lbfgs_rank
+}
+
 }  // namespace
 }  // namespace ipstep
