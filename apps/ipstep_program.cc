@@ -201,7 +201,8 @@ int Run(const EffectRegistry& registry) {
                 sim.integrator().name().c_str(), OptimizerName(options.optimizer.optimizer),
                 sim.time_step(), sim.steps(), options.optimizer.tolerance);
   }
-  if (sim.integrator().is_variational()) {
+  const bool variational = sim.variational_integrator() != nullptr;  // else explicit: no solver
+  if (variational) {
     std::string solver = sim.step_solver().LinearSolverDescription();
     if (solver.empty()) solver = "no linear solver";
     if (UsesNewtonModel(options.optimizer.optimizer)) {
@@ -211,7 +212,7 @@ int Run(const EffectRegistry& registry) {
     std::printf("solver: %s, %d threads\n", solver.c_str(), ThreadCount(options.optimizer));
   }
   std::printf("active effects:\n");
-  if (sim.integrator().has_inertia() && sim.integrator().is_variational()) {
+  if (sim.potential().context().inertia_weight > 0.0) {  // inertia terms (sim/simulation.h)
     std::printf("  inertia: %d terms\n", sim.potential().CountTerms(TermKind::kInertia));
   }
   for (const std::string& line : sim.effect_summaries()) std::printf("  %s\n", line.c_str());
@@ -227,7 +228,7 @@ int Run(const EffectRegistry& registry) {
     if (iterations) iterations->set_step(step);
     // The first step pays for the solver's analysis (the sparsity pattern's
     // ordering, Ceres's preprocessing).
-    if (step == 1 && sim.integrator().is_variational()) {
+    if (step == 1 && variational) {
       setup.Begin("step 1 (with the solver's first analysis)");
     }
   };
@@ -248,7 +249,7 @@ int Run(const EffectRegistry& registry) {
       const bool diverged = r.status.rfind("diverged", 0) == 0;
       if (diverged && r.status.find("after the divergence") != std::string::npos) {
         // Every later step of a diverged run (--on_failure=continue): in the stats only.
-      } else if (diverged || !sim.integrator().is_variational()) {
+      } else if (diverged || !variational) {
         std::fprintf(stderr, "%sstep %d (t = %g): %s\n", progress_shown ? "\n" : "", r.step, r.time,
                      r.status.c_str());
       } else {

@@ -152,8 +152,8 @@ int Run(const EffectRegistry& registry) {
   for (const std::string& name : integrators) {
     IntegratorOptions check = base.integrator;
     check.name = name;
-    const std::unique_ptr<Integrator> integrator = MakeIntegrator(check);
-    if (!integrator->is_variational() || integrator->order() < 1) {
+    const MadeIntegrator integrator = MakeIntegrator(check);
+    if (!integrator.variational || integrator.common().order() < 1) {
       throw InputError("flag", "--tune_integrators",
                        "'" + ClipInput(name) + "': only dynamic variational integrators");
     }

@@ -246,7 +246,8 @@ int Run(const EffectRegistry& registry) {
   std::vector<RunConfig> configs;
   for (const SceneSetup& s : setups) {
     for (const std::string& integrator : integrators) {
-      const bool explicit_method = !MakeIntegrator({integrator, 0.25, 0.5})->is_variational();
+      const bool explicit_method =
+          MakeIntegrator({integrator, 0.25, 0.5}).explicit_integrator != nullptr;
       const std::vector<std::string> methods =
           explicit_method ? std::vector<std::string>{"none"} : optimizers;
       for (const std::string& optimizer : methods) {

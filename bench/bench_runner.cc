@@ -234,7 +234,7 @@ Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec) 
     out.final_x.resize(0);
     return out;
   }
-  const bool variational = sim->integrator().is_variational();
+  const bool variational = sim->variational_integrator() != nullptr;
   if (spec.none != !variational) {
     out.status = "error: optimizer '" + spec.text + "' does not fit integrator " +
                  config.integrator + (variational ? "" : " (use none)");

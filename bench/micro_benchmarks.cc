@@ -165,8 +165,8 @@ struct ClothStep {
       potential = p;
       return MakeStepSolver(p, s, options.optimizer);
     });
-    sim->integrator().Predict(sim->state(), sim->gravity(), sim->time_step(), &potential->context(),
-                              &start);
+    sim->variational_integrator()->Predict(sim->state(), sim->gravity(), sim->time_step(),
+                                           &potential->context(), &start);
     sim->state().PrescribedPositions(sim->time_step(), &start);  // pinned nodes stay
   }
   std::unique_ptr<Simulation> sim;

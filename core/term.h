@@ -75,7 +75,7 @@ struct Term {
   std::unique_ptr<ceres::LossFunction> loss;  // may be null
   // Impulsive (contact barrier, friction): integrators that keep an acceleration
   // history (Newmark) apply these forces as an impulse over the step instead
-  // (Integrator::UpdateWithImpulses).
+  // (VariationalIntegrator::Update, integrators/newmark.h).
   bool impulsive = false;
   // A dissipation measured relative to a moving surface (friction against a
   // moving obstacle): that surface's velocity u (zero: at rest). The force

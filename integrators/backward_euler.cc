@@ -23,7 +23,8 @@ void BackwardEuler::Predict(const State& s, const Eigen::VectorXd& gravity, doub
   *guess = c->x_tilde;
 }
 
-void BackwardEuler::Update(const Eigen::VectorXd& x_next, double h, State* s) const {
+void BackwardEuler::Update(const Eigen::VectorXd& x_next, const ImpulsiveForcesAt&, double h,
+                           State* s) const {
   const Eigen::VectorXd v_next = (x_next - s->x) / h;
   s->a = (v_next - s->v) / h;
   s->v = v_next;

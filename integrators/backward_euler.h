@@ -6,17 +6,18 @@
 // on the linear oscillator the energy ratio per step is 1/(1 + (omega h)^2).
 #pragma once
 
-#include "integrators/integrator.h"
+#include "integrators/variational_integrator.h"
 
 namespace ipstep {
 
-class BackwardEuler : public Integrator {
+class BackwardEuler : public VariationalIntegrator {
  public:
   std::string name() const override { return "backward_euler"; }
   void SetWeights(double h, StepContext* context) const override;
   void Predict(const State& state, const Eigen::VectorXd& gravity, double h, StepContext* context,
                Eigen::VectorXd* guess) const override;
-  void Update(const Eigen::VectorXd& x_next, double h, State* state) const override;
+  void Update(const Eigen::VectorXd& x_next, const ImpulsiveForcesAt& impulsive_forces, double h,
+              State* state) const override;
 };
 
 }  // namespace ipstep

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "core/option_table.h"
-#include "integrators/integrator.h"
+#include "integrators/integrator_options.h"
 
 namespace ipstep {
 

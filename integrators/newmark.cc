@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/forces.h"
+
 namespace ipstep {
 
 void Newmark::SetWeights(double h, StepContext* c) const {
@@ -10,6 +12,11 @@ void Newmark::SetWeights(double h, StepContext* c) const {
   c->potential_weight = beta_ * h * h;
   c->dissipation_weight = beta_ * beta_ * h * h * h / gamma_;
   c->velocity_slope = gamma_ / (beta_ * h);
+}
+
+bool Newmark::InitializeState(IncrementalPotential* potential, const Eigen::VectorXd& gravity,
+                              State* s) const {
+  return ComputeAccelerations(potential, *s, gravity, &s->a, /*impulsive=*/false);
 }
 
 Eigen::VectorXd Newmark::ExplicitPart(const State& s, double h) const {
@@ -29,7 +36,13 @@ void Newmark::Predict(const State& s, const Eigen::VectorXd& gravity, double h, 
   *guess = s.x + h * s.v + 0.5 * h * h * s.a;
 }
 
-void Newmark::Update(const Eigen::VectorXd& x_next, double h, State* s) const {
+void Newmark::Update(const Eigen::VectorXd& x_next, const ImpulsiveForcesAt& impulsive_forces,
+                     double h, State* s) const {
+  Eigen::VectorXd forces;
+  if (impulsive_forces(x_next, &forces)) {
+    UpdateWithImpulses(x_next, forces, h, s);
+    return;
+  }
   const Eigen::VectorXd a_next = (x_next - ExplicitPart(*s, h)) / (beta_ * h * h);
   s->v += h * ((1.0 - gamma_) * s->a + gamma_ * a_next);
   s->a = a_next;

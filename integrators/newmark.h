@@ -29,19 +29,21 @@
 //  is conditionally stable (like symplectic Euler) and is allowed.
 #pragma once
 
-#include "integrators/integrator.h"
+#include "integrators/variational_integrator.h"
 
 namespace ipstep {
 
-class Newmark : public Integrator {
+class Newmark : public VariationalIntegrator {
  public:
   Newmark(double beta, double gamma) : beta_(beta), gamma_(gamma) {}
   std::string name() const override { return "newmark"; }
-  bool needs_initial_acceleration() const override { return true; }
   void SetWeights(double h, StepContext* context) const override;
+  // a_0 = M^-1 f(x_0, v_0) without the impulsive forces (see Update): the
+  // barrier of pairs within d_hat at x_0 is not in a_0.
+  bool InitializeState(IncrementalPotential* potential, const Eigen::VectorXd& gravity,
+                       State* state) const override;
   void Predict(const State& state, const Eigen::VectorXd& gravity, double h, StepContext* context,
                Eigen::VectorXd* guess) const override;
-  void Update(const Eigen::VectorXd& x_next, double h, State* state) const override;
   // Contact: impulsive forces f_c (barrier, friction) are kept out of the
   // acceleration history. With the step's solution x (stationarity:
   // x = x_hat + beta h^2 (a_s + M^-1 f_c), a_s from the smooth forces),
@@ -57,21 +59,20 @@ class Newmark : public Integrator {
   // force in a_{n+1} instead (plain Newmark), the stiff barrier's force spike is
   // replayed in the next step and impacts gain or lose energy at random
   // (docs/contact.md). The friction terms' velocity map matches v_{n+1} for
-  // gamma = 2 beta.
-  bool separates_impulses() const override { return true; }
+  // gamma = 2 beta. Without impulsive forces this is the plain Newmark update.
+  void Update(const Eigen::VectorXd& x_next, const ImpulsiveForcesAt& impulsive_forces, double h,
+              State* state) const override;
   // The impulse 2 beta h f_c with the position change beta h^2 f_c is the
   // trapezoidal rule with the contact force at the end point only: a barrier
   // of stiffness kappa acts as one of 2 beta kappa, and stores that energy.
   double impulsive_energy_factor() const override { return 2.0 * beta_; }
-  void UpdateWithImpulses(const Eigen::VectorXd& x_next, const Eigen::VectorXd& impulsive_forces,
-                          double h, State* state) const override;
 
   // Second order for gamma = 1/2, first otherwise.
   int order() const override { return gamma_ == 0.5 ? 2 : 1; }
   // The local error's leading term h^2 (|beta - 1/6| + |gamma - 1/2|) |a_{n+1} - a_n|
   // (Zienkiewicz and Xie, 1991, for gamma = 1/2: the step's positions against
   // a cubic through the same accelerations) with the smooth accelerations the
-  // state keeps: contact impulses are not in them (UpdateWithImpulses), the
+  // state keeps: contact impulses are not in them (Update), the
   // controller budgets an impact's timing separately.
   double LocalError(const State& before, const State& after, double h) const override;
 
@@ -85,6 +86,9 @@ class Newmark : public Integrator {
 
  private:
   Eigen::VectorXd ExplicitPart(const State& s, double h) const;  // x_hat
+  // Update with the impulsive forces at x_next.
+  void UpdateWithImpulses(const Eigen::VectorXd& x_next, const Eigen::VectorXd& impulsive_forces,
+                          double h, State* s) const;
   double beta_;
   double gamma_;
 };

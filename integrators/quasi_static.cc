@@ -19,7 +19,8 @@ void QuasiStatic::Predict(const State& s, const Eigen::VectorXd&, double, StepCo
   *guess = s.x;
 }
 
-void QuasiStatic::Update(const Eigen::VectorXd& x_next, double h, State* s) const {
+void QuasiStatic::Update(const Eigen::VectorXd& x_next, const ImpulsiveForcesAt&, double h,
+                         State* s) const {
   s->v = (x_next - s->x) / h;
   s->a.setZero();
   s->x = x_next;

@@ -6,11 +6,11 @@
 // assumption and reported as such.
 #pragma once
 
-#include "integrators/integrator.h"
+#include "integrators/variational_integrator.h"
 
 namespace ipstep {
 
-class QuasiStatic : public Integrator {
+class QuasiStatic : public VariationalIntegrator {
  public:
   std::string name() const override { return "quasi_static"; }
   // No time-discretisation error: each step is an equilibrium.
@@ -20,7 +20,8 @@ class QuasiStatic : public Integrator {
   void SetWeights(double h, StepContext* context) const override;
   void Predict(const State& state, const Eigen::VectorXd& gravity, double h, StepContext* context,
                Eigen::VectorXd* guess) const override;
-  void Update(const Eigen::VectorXd& x_next, double h, State* state) const override;
+  void Update(const Eigen::VectorXd& x_next, const ImpulsiveForcesAt& impulsive_forces, double h,
+              State* state) const override;
 };
 
 }  // namespace ipstep

@@ -12,16 +12,6 @@ void SymplecticEuler::SetWeights(double h, StepContext* c) const {
   c->velocity_slope = 1.0;
 }
 
-void SymplecticEuler::Predict(const State& s, const Eigen::VectorXd&, double, StepContext* c,
-                              Eigen::VectorXd* guess) const {
-  c->x_start = s.x;
-  *guess = s.x;
-}
-
-void SymplecticEuler::Update(const Eigen::VectorXd& x_next, double, State* s) const {
-  s->x = x_next;
-}
-
 void SymplecticEuler::Advance(const Eigen::VectorXd& forces, double h, State* s) const {
   const int dim = s->dimension;
   for (int i = 0; i < s->num_nodes(); ++i) {

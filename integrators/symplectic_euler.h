@@ -4,18 +4,14 @@
 // determinant 1: bounded for Omega = omega h < 2, exponentially growing above.
 #pragma once
 
-#include "integrators/integrator.h"
+#include "integrators/explicit_integrator.h"
 
 namespace ipstep {
 
-class SymplecticEuler : public Integrator {
+class SymplecticEuler : public ExplicitIntegrator {
  public:
   std::string name() const override { return "symplectic_euler"; }
-  bool is_variational() const override { return false; }
   void SetWeights(double h, StepContext* context) const override;
-  void Predict(const State& state, const Eigen::VectorXd& gravity, double h, StepContext* context,
-               Eigen::VectorXd* guess) const override;
-  void Update(const Eigen::VectorXd& x_next, double h, State* state) const override;
   void Advance(const Eigen::VectorXd& forces, double h, State* state) const override;
 };
 

@@ -165,14 +165,14 @@ std::vector<std::string> Simulation::DiagnosticNames() const {
 }
 
 void Simulation::ReplaceStepSolver(const StepSolverFactory& factory) {
-  if (!integrator_->is_variational()) {
-    throw std::logic_error(integrator_->name() + " does not use a step solver");
+  if (!integrator_.variational) {
+    throw std::logic_error(integrator().name() + " does not use a step solver");
   }
   solver_ = factory(potential_.get(), &state_);
 }
 
 const StepSolver& Simulation::step_solver() const {
-  if (!solver_) throw std::logic_error(integrator_->name() + " does not use a step solver");
+  if (!solver_) throw std::logic_error(integrator().name() + " does not use a step solver");
   return *solver_;
 }
 
@@ -182,8 +182,8 @@ void Simulation::set_iteration_sink(IterationSink sink) {
 
 EnergyReport Simulation::Energies() const {
   EnergyReport report;
-  if (!ComputeEnergies(*potential_, state_, gravity_, integrator_->has_inertia(),
-                       integrator_->impulsive_energy_factor(), &report)) {
+  if (!ComputeEnergies(*potential_, state_, gravity_, integrator().has_inertia(),
+                       integrator().impulsive_energy_factor(), &report)) {
     report.kinetic = report.potential = std::nan("");
   }
   return report;
@@ -208,7 +208,7 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
                      "a step of " + limits::FormatLimit(h) + " s is outside " +
                          limits::RangeText(limits::kMinTimeStep, limits::kMaxTimeStep, "s"));
   }
-  if (potential_->context().time_step != h) integrator_->SetWeights(h, &potential_->context());
+  if (potential_->context().time_step != h) integrator().SetWeights(h, &potential_->context());
   StepReport report;
   report.step = ++steps_taken_;
   report.time_step = h;
@@ -220,7 +220,7 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
   for (int substeps = 2; !report.converged && substeps <= max_substeps; substeps *= 2) {
     Restore(saved);
     const double h_sub = h / substeps;
-    integrator_->SetWeights(h_sub, &potential_->context());
+    integrator().SetWeights(h_sub, &potential_->context());
     StepReport attempt;
     for (int k = 0; k < substeps && attempt.converged; ++k) {
       StepReport sub;
@@ -234,7 +234,7 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
       attempt.prescribed_work += sub.prescribed_work;
       attempt.energies = sub.energies;
     }
-    integrator_->SetWeights(h, &potential_->context());
+    integrator().SetWeights(h, &potential_->context());
     report.iterations += attempt.iterations;
     report.evaluations += attempt.evaluations;
     report.converged = attempt.converged;
@@ -266,40 +266,39 @@ StepReport Simulation::Step(double h, bool retry_as_substeps) {
 void Simulation::Advance(double h, StepReport* report) {
   const double t_next = state_.time + h;
   const int dim = state_.dimension;
-  Eigen::VectorXd x;
-  integrator_->Predict(state_, gravity_, h, &potential_->context(), &x);
-  const bool variational = integrator_->is_variational();
+  const VariationalIntegrator* variational = integrator_.variational.get();
   // The start, to go back to when the step ends inside an obstacle (only a
   // step filter can find one: no copy of the state without them).
   std::optional<State> start;
   if (potential_->has_step_filters()) start = state_;
   bool boundary_reached = true;  // the prescribed nodes reached their targets
-  // The energy balance starts before the filters' BeginStep, which report
-  // what they change (PrescribedWork): sim/energy_balance.h.
-  const bool check_energy = variational && options_.energy_tolerance > 0.0;
   const bool prescribed_motion = state_.has_prescribed_motion();
   EnergyPoint energy_start;
-  const bool measured_start =
-      check_energy &&
-      MeasureEnergy(*potential_, state_, gravity_, integrator_->has_inertia(),
-                    integrator_->impulsive_energy_factor(), prescribed_motion, &energy_start);
+  bool measured_start = false;  // variational steps with an energy tolerance
   if (variational) {
+    Eigen::VectorXd x;
+    variational->Predict(state_, gravity_, h, &potential_->context(), &x);
+    // The energy balance starts before the filters' BeginStep, which report
+    // what they change (PrescribedWork): sim/energy_balance.h.
+    measured_start =
+        options_.energy_tolerance > 0.0 &&
+        MeasureEnergy(*potential_, state_, gravity_, integrator().has_inertia(),
+                      integrator().impulsive_energy_factor(), prescribed_motion, &energy_start);
     ApplyBoundaryConditions(t_next, &x);
     for (const auto& filter : potential_->step_filters()) filter->BeginStep(state_.x.data());
     boundary_reached = SolveStep(h, &x, report);
-    Eigen::VectorXd impulsive_forces;
-    if (integrator_->separates_impulses() && ImpulsiveForces(x, &impulsive_forces)) {
-      integrator_->UpdateWithImpulses(x, impulsive_forces, h, &state_);
-    } else {
-      integrator_->Update(x, h, &state_);
-    }
+    variational->Update(
+        x, [this](const Eigen::VectorXd& at, Eigen::VectorXd* f) { return ImpulsiveForces(at, f); },
+        h, &state_);
   } else {
+    // The forces f(x_n, v_n), lagged terms (x_start) at x_n.
+    potential_->context().x_start = state_.x;
     Eigen::VectorXd forces;
     if (!ComputeForces(potential_.get(), state_, gravity_, &forces)) {
       report->converged = false;
       report->status = "forces cannot be evaluated";
     } else {
-      integrator_->Advance(forces, h, &state_);
+      integrator_.explicit_integrator->Advance(forces, h, &state_);
     }
   }
   // Prescribed nodes whose staging ran out stay where it left them.
@@ -342,8 +341,8 @@ void Simulation::Advance(double h, StepReport* report) {
   EnergyPoint energy_end;
   const bool measured_end =
       measured_start &&
-      MeasureEnergy(*potential_, state_, gravity_, integrator_->has_inertia(),
-                    integrator_->impulsive_energy_factor(), prescribed_motion, &energy_end);
+      MeasureEnergy(*potential_, state_, gravity_, integrator().has_inertia(),
+                    integrator().impulsive_energy_factor(), prescribed_motion, &energy_end);
   report->energies = measured_end ? energy_end.energy : Energies();
   // The step that produces a non-finite number fails, whatever the integrator.
   if (report->converged && !(state_.x.allFinite() && state_.v.allFinite())) {
@@ -357,7 +356,7 @@ void Simulation::Advance(double h, StepReport* report) {
   double filter_work = 0.0;
   for (const auto& filter : potential_->step_filters()) {
     // Filters' terms are impulsive (contact): counted with the integrator's factor.
-    filter_work += integrator_->impulsive_energy_factor() *
+    filter_work += integrator().impulsive_energy_factor() *
                    filter->PrescribedWork(energy_start.x.data(), energy_end.x.data());
   }
   const EnergyBalance balance = BalanceOf(energy_start, energy_end, state_, gravity_, filter_work,

@@ -1,6 +1,10 @@
 // A simulation run: the state built from a scene, the incremental potential with
 // exactly the effects the scene lists, an integrator and (for variational
 // integrators) a step solver. Everything is built once; Step() advances by h.
+// The kind of integrator MakeIntegrator made chooses the step path: a
+// variational step predicts, solves and updates; an explicit one advances from
+// the forces at its start. The potential has inertia terms when the
+// integrator's weights weigh inertia (w_I > 0: dynamic variational integrators).
 #pragma once
 
 #include <functional>
@@ -15,7 +19,7 @@
 #include "core/state.h"
 #include "energies/effect.h"
 #include "energies/effect_registry.h"
-#include "integrators/integrator.h"
+#include "integrators/make_integrator.h"
 #include "problems/scene.h"
 #include "sim/energy_balance.h"
 #include "solver/step_solver.h"
@@ -107,7 +111,13 @@ class Simulation {
 
   const Scene& scene() const { return scene_; }
   const State& state() const { return state_; }
-  const Integrator& integrator() const { return *integrator_; }
+  // What every integrator has (name, order, LocalError).
+  const Integrator& integrator() const { return integrator_.common(); }
+  // The variational integrator; null when it is explicit (then the step has no
+  // solver and no predictor).
+  const VariationalIntegrator* variational_integrator() const {
+    return integrator_.variational.get();
+  }
   const IncrementalPotential& potential() const { return *potential_; }
   // The step solver (variational integrators; throws std::logic_error otherwise).
   const StepSolver& step_solver() const;
@@ -166,7 +176,8 @@ class Simulation {
   int steps_taken_ = 0;
   State state_;
   Eigen::VectorXd gravity_;
-  std::unique_ptr<Integrator> integrator_;
+  // Exactly one kind is set (MakeIntegrator): it chooses the step path of Advance.
+  MadeIntegrator integrator_;
   std::unique_ptr<IncrementalPotential> potential_;
   std::unique_ptr<StepSolver> solver_;
   EffectList effects_;

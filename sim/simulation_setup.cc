@@ -68,19 +68,14 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   integrator_ = MakeIntegrator(options.integrator);
   BuildState();
   BuildPotential();
-  if (integrator_->is_variational()) {
+  if (const VariationalIntegrator* variational = integrator_.variational.get()) {
     solver_ = MakeStepSolver(potential_.get(), &state_, options.optimizer);
-  } else {
-    ValidateOptimizerOptions(options.optimizer);
-  }
-  if (integrator_->needs_initial_acceleration()) {
-    // Newmark's accelerations hold no impulses (Integrator::UpdateWithImpulses):
-    // the barrier of pairs within d_hat at x_0 is not in a_0.
-    if (!ComputeAccelerations(potential_.get(), state_, gravity_, &state_.a,
-                              !integrator_->separates_impulses())) {
+    if (!variational->InitializeState(potential_.get(), gravity_, &state_)) {
       throw InputError(scene_.source, "positions",
                        "the energies cannot be evaluated at the initial state");
     }
+  } else {
+    ValidateOptimizerOptions(options.optimizer);
   }
 }
 
@@ -109,9 +104,11 @@ void Simulation::BuildState() {
 
 void Simulation::BuildPotential() {
   potential_ = std::make_unique<IncrementalPotential>(state_.dimension, state_.num_nodes());
-  integrator_->SetWeights(time_step_, &potential_->context());
-  TermBuilder builder(scene_, state_, integrator_->has_inertia(), potential_.get(), &effects_);
-  if (integrator_->has_inertia() && integrator_->is_variational()) {
+  integrator().SetWeights(time_step_, &potential_->context());
+  TermBuilder builder(scene_, state_, integrator().has_inertia(), potential_.get(), &effects_);
+  // Inertia terms where the weights weigh them: not for quasi-static (no
+  // inertia) nor for an explicit integrator (forces only).
+  if (potential_->context().inertia_weight > 0.0) {
     builder.set_family("inertia");
     for (int i = 0; i < state_.num_nodes(); ++i) {
       if (!state_.is_free(i)) continue;

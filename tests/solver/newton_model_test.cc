@@ -460,8 +460,8 @@ TEST(NewtonModel, CeresFirstStepEqualsTheEigenProjectedNewtonDirection) {
       return MakeStepSolver(p, s, options.optimizer);
     });
     Eigen::VectorXd start;
-    sim.integrator().Predict(sim.state(), sim.gravity(), sim.time_step(), &potential->context(),
-                             &start);
+    sim.variational_integrator()->Predict(sim.state(), sim.gravity(), sim.time_step(),
+                                          &potential->context(), &start);
     sim.state().PrescribedPositions(sim.time_step(), &start);
     // Perturb the guess so that springs are both stretched and compressed.
     for (int d = 0; d < start.size(); ++d) start[d] += 0.004 * std::sin(7.0 * d);
