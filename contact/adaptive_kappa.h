@@ -1,4 +1,4 @@
-// The barrier stiffness kappa of the contact filter, adaptive as in IPC (Li et
+// The barrier stiffness kappa of the contact state, adaptive as in IPC (Li et
 // al. 2020) unless a fixed value is given:
 //  * kappa_min: the stiffness at which a barrier at d_hat / 2 is as stiff as a
 //    node's inertia (mean free contact node mass m over the potential weight

@@ -1,8 +1,8 @@
 // The "contact" and "friction" effects: strict parsing of their scene
 // parameters (every problem is an InputError naming the file and key), flag
-// overrides, and construction of the contact filter (contact/contact_filter.h)
-// and the ContactEffect that stands for it (contact/contact_effect.h), which
-// friction receives.
+// overrides, and construction of the contact state (contact/contact_state.h),
+// its step filter (contact/contact_filter.h) and the ContactEffect that owns
+// the state (contact/contact_effect.h), which friction receives.
 #include "contact/contact_effects.h"
 
 #include <cmath>
@@ -16,6 +16,7 @@
 #include "contact/collision_mesh.h"
 #include "contact/contact_effect.h"
 #include "contact/contact_filter.h"
+#include "contact/contact_state.h"
 #include "contact/obstacles/read_obstacle.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
@@ -101,14 +102,15 @@ std::unique_ptr<Effect> BuildContact(TermBuilder& builder, const json& parameter
   }
 
   CollisionMesh surface = BuildCollisionMesh(scene);
-  auto filter = std::make_unique<ContactFilter>(builder.potential(), &builder.state(),
-                                                std::move(surface), options);
+  auto state = std::make_unique<ContactState>(builder.potential(), &builder.state(),
+                                              std::move(surface), options);
   const std::string penetration =
-      filter->FindPenetration(builder.state().x.data(), builder.state().time);
+      state->FindPenetration(builder.state().x.data(), builder.state().time);
   if (!penetration.empty()) {
     throw InputError(source, "contact", "the initial state is not free of contact: " + penetration);
   }
-  auto effect = std::make_unique<ContactEffect>(filter.get(), filter->Summary());
+  auto filter = std::make_unique<ContactFilter>(state.get(), builder.state().x);
+  auto effect = std::make_unique<ContactEffect>(std::move(state), filter.get());
   builder.AddStepFilter(std::move(filter));
   return effect;
 }
@@ -120,7 +122,7 @@ std::unique_ptr<Effect> BuildFriction(TermBuilder& builder, const json& paramete
   if (contact == nullptr) {
     throw InputError(source, "effects", "\"friction\" needs \"contact\" in \"effects\"");
   }
-  ContactFilter* filter = &contact->filter();
+  ContactState* state = &contact->state();
   if (parameters.is_null()) {
     throw InputError(source, "friction", "the \"friction\" effect needs its parameters object");
   }
@@ -135,14 +137,13 @@ std::unique_ptr<Effect> BuildFriction(TermBuilder& builder, const json& paramete
   if (p.Has("iterations")) {
     options.iterations = p.Get("iterations").IntegerInRange(1, limits::kMaxFrictionIterations);
   }
-  filter->EnableFriction(options);
+  state->EnableFriction(options);
   std::ostringstream out;
   out << "friction: mu " << options.mu;
-  for (const ObstaclePtr& o : filter->obstacles()) {
+  for (const ObstaclePtr& o : state->obstacles()) {
     if (o->friction_mu()) out << " (" << o->name() << ": " << *o->friction_mu() << ")";
   }
-  if (filter->self_contact_mu() >= 0.0)
-    out << " (self-contact: " << filter->self_contact_mu() << ")";
+  if (state->self_contact_mu() >= 0.0) out << " (self-contact: " << state->self_contact_mu() << ")";
   out << ", epsilon_v " << options.epsilon_v << " m/s, " << options.iterations
       << " lag iteration(s) per step";
   return std::make_unique<SummaryEffect>(out.str());

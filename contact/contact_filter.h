@@ -1,75 +1,34 @@
 // The contact step filter (core/step_filter.h): keeps every iterate free of
-// penetration and tunnelling, maintains the barrier terms of the pairs in
-// reach, the barrier stiffness (contact/adaptive_kappa.h) and the lagged
-// friction terms, and reports min_distance / active_contacts. The pairs are
-// kept by pair kinds (contact/pair_set.h, registered in contact/pair_kinds.cc);
-// the filter only drives them. A pair's barrier term (family "contact", in the
-// filter's own term group) is
-//   w_U kappa w_i B(d)  (contact/barrier.h)
-// with w_i the weight of the pair's node, edge or face (contact/collision_mesh.h);
-// its friction term (family "friction", contact/friction.h) is
-//   w_R mu lambda f0(|v_t|),  lambda = kappa w_i (-B'(d)) lagged,
-// with mu the pair's obstacle's own coefficient or contact.self_contact_mu
-// (FrictionSettings), kappa for self-contact pairs contact.self_contact_kappa
-// when given.
-//
-// Within a step:
-//  * BeginStep(x_n) collects the candidate pairs: those that can come within
-//    d_hat during the step (distance at x_n below d_hat plus twice the
-//    predictor's displacement plus the obstacle's travel). Terms of pairs out of
-//    reach are exactly zero, so a generous set costs little.
-//  * RefreshTerms(x) after each solve adds every pair within d_hat of the
-//    solution that the set missed, and asks for another solve. The set only
-//    grows within a step, so this terminates.
-//  * Moving obstacles: the solve needs a start free of penetration at the
-//    obstacles' positions. When an obstacle would sweep into x_n during the
-//    step, its time is advanced in stages: each solve uses the obstacles at a
-//    time tau, and RefreshTerms moves tau towards t_{n+1} as far as continuous
-//    collision detection against the current solution allows (0.8 of the way
-//    to impact), then solves again. The step is feasible only once tau = t_{n+1}
-//    (CheckState: kBoundaryNotReached before). A step whose state is kept
-//    short of it starts the next one there (State::boundary_lag).
-//  * Lagged closest points (edges and faces against sphere centres) are
-//    re-lagged and the step solved again while a lag is more than 1 % farther
-//    than the true closest point, at most 3 times per step.
-//  * Friction: normal forces and tangent bases are lagged at x_n; with
-//    friction iterations > 1 they are re-lagged at the solution and the step is
-//    solved again, up to that many lags in total.
-// IsStepValid and MaxStepSize are one time-of-impact sweep over every kind.
+// penetration and tunnelling, and reports min_distance / active_contacts /
+// broad_phase_ms. It filters with the contact state's geometry
+// (contact/contact_state.h, which the contact effect owns: the pairs, their
+// terms, kappa, friction and the obstacles' time): IsStepValid and
+// MaxStepSize are one time-of-impact sweep over every pair kind from the last
+// accepted iterate at the current obstacle time, and the state check asks for
+// no penetration and the obstacles at t_{n+1}. The step's other events
+// (BeginStep, RefreshTerms, ProposeStart, StartRejected, PrescribedWork) are
+// the state's, which the filter passes them to.
 #pragma once
 
-#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "contact/adaptive_kappa.h"
 #include "contact/collision_mesh.h"
-#include "contact/contact_options.h"
-#include "contact/obstacle_time.h"
-#include "contact/pair_set.h"
-#include "core/incremental_potential.h"
-#include "core/state.h"
+#include "contact/contact_state.h"
+#include "contact/obstacle.h"
 #include "core/step_filter.h"
 
 namespace ipstep {
 
 class ContactFilter : public StepFilter {
  public:
-  static constexpr char kContactFamily[] = "contact";
-  static constexpr char kFrictionFamily[] = "friction";
+  static constexpr const char* kContactFamily = ContactState::kContactFamily;
 
-  // `potential` and `state` must outlive the filter (the simulation owns all).
-  ContactFilter(IncrementalPotential* potential, const State* state, CollisionMesh mesh,
-                ContactOptions options);
-
-  // Empty if positions x are free of penetration (gaps > 0) at time t;
-  // otherwise a description of the first penetrating pair.
-  std::string FindPenetration(const double* x, double t) const;
-
-  void EnableFriction(const FrictionOptions& options);
-  bool has_friction() const { return friction_enabled_; }
+  // `contact` must outlive the filter (the simulation owns both); `x0`: the
+  // first accepted iterate (the initial positions).
+  ContactFilter(ContactState* contact, Eigen::VectorXd x0);
 
   // StepFilter.
   void OnAccepted(const double* x) override;
@@ -82,122 +41,34 @@ class ContactFilter : public StepFilter {
   double ReachedTime() const override;
   void BeginStep(const double* x_n) override;
   bool RefreshTerms(const double* x) override;
-  // From the kSecantFromStage-th staged solve of a step on: the free nodes moved along
-  // by the secant through the last two stages' solutions (extrapolated to
-  // t_{n+1}), when that path lets the obstacles advance farther than with the
-  // nodes held.
   bool ProposeStart(double* x) override;
-  // The secant starts at the third staged solve (two solutions give a secant).
-  // Measured (ipstep --scene=squash_square --contact_kappa=1e5): from the 3rd
-  // stage 15.8 Newton iterations per step (max 30), from the 25th 89.7 (max
-  // 156), without the secant 192 (22 steps substepped); hard/squeeze_fast's
-  // step 7 takes 27 iterations instead of 90.
-  static constexpr int kSecantFromStage = 3;
   void StartRejected() override;
   std::vector<std::string> DiagnosticNames() const override;
   // min_distance [m], active_contacts, broad_phase_ms (the pair kinds' broad
   // phase since the step, or its last substep, began: PairSet::BroadPhaseSeconds).
   std::vector<double> Diagnostics(const double* x) const override;
-  // What this filter put into the barrier energy over the step: at BeginStep,
-  // the change of U_b(x_n, t_n) by the step's stiffness and pairs (adaptive
-  // kappa, pairs coming into reach); then the moving obstacles' work on the
-  // body, the integral of dU_b/dt (the barrier energy's rate at fixed
-  // positions, central differences in the obstacle time) along the step by
-  // the trapezoidal rule between (x_start, t_n) and (x_end, t_{n+1}) (one end
-  // if the other cannot be evaluated).
   double PrescribedWork(const double* x_start, const double* x_end) override;
-  // U_b (the barrier terms' energy) at positions x and obstacle time t.
-  bool BarrierEnergy(const double* x, double t, double* energy);
-  // -grad U_b at x (the barrier terms as they are, unweighted [N]); false when
-  // a term cannot be evaluated there.
-  bool BarrierForces(const double* x, Eigen::VectorXd* forces) const;
 
-  // Over every kind's combinations closer than `reach` at the current
-  // obstacle time: the smallest gap (infinity if none) and their number.
-  void Near(const double* x, double reach, double* min_distance, int* count) const;
+  // The state the filter works with, and what of it the filter's users read.
+  const ContactState& contact() const { return *contact_; }
+  std::string FindPenetration(const double* x, double t) const {
+    return contact_->FindPenetration(x, t);
+  }
   double MinDistance(const double* x, double reach) const {
-    double best;
-    int count;
-    Near(x, reach, &best, &count);
-    return best;
+    return contact_->MinDistance(x, reach);
   }
-  int CountPairsWithin(const double* x, double reach) const {
-    double best;
-    int count;
-    Near(x, reach, &best, &count);
-    return count;
-  }
-
-  double kappa() const { return kappa_.value(); }
-  double kappa_min() const { return kappa_.min(); }
-  bool adaptive_kappa() const { return kappa_.adaptive(); }
-  double d_hat() const { return options_.d_hat; }
-  double obstacle_time() const { return time_.tau(); }
-  const CollisionMesh& mesh() const { return mesh_; }
-  const ObstacleList& obstacles() const { return options_.obstacles; }
-  // contact.self_contact_mu (< 0: the friction effect's mu).
-  double self_contact_mu() const { return options_.self_contact_mu; }
-  const std::vector<std::unique_ptr<PairSet>>& pair_sets() const { return sets_; }
-  int num_barrier_pairs() const;
-  int num_friction_contacts() const { return num_friction_contacts_; }
-  std::string Summary() const;
+  bool has_friction() const { return contact_->has_friction(); }
+  double kappa() const { return contact_->kappa(); }
+  bool adaptive_kappa() const { return contact_->adaptive_kappa(); }
+  double d_hat() const { return contact_->d_hat(); }
+  double obstacle_time() const { return contact_->obstacle_time(); }
+  const CollisionMesh& mesh() const { return contact_->mesh(); }
+  const ObstacleList& obstacles() const { return contact_->obstacles(); }
 
  private:
-  double BroadPhaseSeconds() const;
-  // Smallest TimeOfImpact of the kinds (PairSet::kNoImpact if none).
-  double Sweep(const double* a, const double* b, double t_a, double t_b) const;
-  bool ExtendPairs(const CandidateRegion& region);
-  // Per obstacle: for a rotating one, the largest distance of a contact node
-  // at a or b from its centre, plus reach (how far the nodes may still go);
-  // 0 for the others (ObstacleTime::Travel).
-  std::vector<double> RotationRadii(const double* a, const double* b, double reach) const;
-  void RebuildBarrierTerms();
-  double Lag(const double* x);
-  // The coefficients of every pair kind, and whether any is > 0.
-  FrictionSettings Friction() const;
-  bool AnyFriction() const;
-  void LagFriction(const double* x, double t);
-  void RebuildFrictionTerms();
-  // Moves the obstacle time towards t_{n+1} as far as x allows.
-  void AdvanceObstacles(const double* x);
-  // The same along the secant of the stages' solutions, from the third stage
-  // on (sets proposal_ when it gets farther); returns the extra reach [m].
-  double AdvanceObstaclesAlongSecant(const double* x);
-  void UpdateKappa(const double* x_n);
-
-  IncrementalPotential* potential_;
-  const State* state_;
-  StepContext* context_;
-  int dim_;
-  CollisionMesh mesh_;
-  ContactOptions options_;
-  std::vector<bool> node_free_;  // per entry of mesh_.nodes
-  double margin_;                // smallest admissible gap
-  AdaptiveKappa kappa_;
-  ObstacleTime time_;
-  double begin_energy_input_ = 0.0;    // PrescribedWork
-  double broad_phase_at_begin_ = 0.0;  // BroadPhaseSeconds() at BeginStep [s]
+  ContactState* contact_;
   Eigen::VectorXd accepted_;
-  int lags_ = 0;  // closest-point re-lags this step
-  // Moving obstacles' stages this step: the last two solutions and times,
-  // the proposed start and the obstacle time without it.
-  std::vector<Eigen::VectorXd> stage_solutions_;
-  std::vector<double> stage_times_;
-  Eigen::VectorXd proposal_;
-  bool has_proposal_ = false;
-  double held_tau_ = 0.0;
-  int stages_ = 0;  // solutions of this step at a staged obstacle time
-
-  std::vector<std::unique_ptr<PairSet>> sets_;
-  // The potential's term groups of the barrier and friction terms this filter
-  // owns (it removes and selects them by these, never by family name).
-  int barrier_group_ = 0;
-  int friction_group_ = 0;
-
-  bool friction_enabled_ = false;
-  FrictionOptions friction_;
-  int friction_lags_ = 0;  // friction lags this step
-  int num_friction_contacts_ = 0;
+  double broad_phase_at_begin_ = 0.0;  // ContactState::BroadPhaseSeconds() at BeginStep [s]
 };
 
 }  // namespace ipstep

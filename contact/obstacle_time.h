@@ -1,4 +1,4 @@
-// The time at which the contact filter sees the obstacles within a step.
+// The time at which the contact state sees the obstacles within a step.
 // Moving obstacles are advanced in stages: each solve uses them at a time tau,
 // and Advance moves tau towards t_{n+1} as far as continuous collision
 // detection against the current solution allows (0.8 of the way to the first
@@ -30,8 +30,8 @@ class ObstacleTime {
   bool reached_end() const { return !(tau_ < t_next_); }
 
   double tau() const { return tau_; }
-  // Read by the terms at every evaluation; the filter may set it to evaluate
-  // at another time.
+  // Read by the terms at every evaluation; the contact state may set it to
+  // evaluate at another time.
   double* pointer() { return &tau_; }
   // The obstacles' time at the start of the step (t_n - lag).
   double t_n() const { return t_n_; }

@@ -2,8 +2,6 @@
 
 namespace ipstep {
 
-bool IsGravityTerm(const Term& term) { return term.family == "gravity"; }
-
 bool ComputeForces(IncrementalPotential* potential, const State& s, const Eigen::VectorXd& gravity,
                    Eigen::VectorXd* forces, bool impulsive) {
   StepContext& c = potential->context();
@@ -17,7 +15,7 @@ bool ComputeForces(IncrementalPotential* potential, const State& s, const Eigen:
   double energy = 0.0;
   const bool ok = potential->EvaluateUnweighted(
       [impulsive](const Term& t) {
-        return t.kind != TermKind::kInertia && !IsGravityTerm(t) && (impulsive || !t.impulsive);
+        return t.kind != TermKind::kInertia && !t.uniform_gravity && (impulsive || !t.impulsive);
       },
       s.x.data(), &energy, gradient.data());
   c.x_base = saved_x_base;
@@ -58,7 +56,7 @@ bool ComputeEnergies(const IncrementalPotential& potential, const State& s,
     double e = 0.0;
     if (!potential.EvaluateUnweighted(
             [impulsive](const Term& t) {
-              return t.kind == TermKind::kPotential && !IsGravityTerm(t) &&
+              return t.kind == TermKind::kPotential && !t.uniform_gravity &&
                      t.impulsive == impulsive;
             },
             s.x.data(), &e, gradient != nullptr ? part.data() : nullptr)) {

@@ -8,10 +8,10 @@
 
 namespace ipstep {
 
-// True for terms of the family "gravity" (the quasi-static linear potential,
-// whose value carries an offset; reports use -m g.x instead).
-bool IsGravityTerm(const Term& term);
-
+// The gravity force and energy below come from the gravity vector g: the
+// uniform-gravity terms (Term::uniform_gravity, the quasi-static linear
+// potential, whose value carries an offset) are left out of them.
+//
 // f(x, v) = -grad U(x) - B v + M g on every node (zero rows for nodes without
 // terms). Temporarily points the context's velocity map at (x, v); restores it.
 // Returns false if a term cannot be evaluated at x.

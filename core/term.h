@@ -107,6 +107,11 @@ struct Term {
   // Newton models that ask for the exact Hessian (projected_newton's
   // when_indefinite and progressive) take zero.
   bool affine_energy = false;
+  // The uniform-gravity potential of the quasi-static integrator
+  // (energies/gravity_potential.h), whose value carries an offset: force and
+  // energy reports (core/forces.h) leave these terms out and count M g and
+  // -m g.x from the gravity vector instead.
+  bool uniform_gravity = false;
   // Two nodes whose residuals depend on d = x_1 - x_0 only (springs): the
   // Hessian is [[K, -K], [-K, K]] and the model is built over d (K).
   bool pair_difference = false;

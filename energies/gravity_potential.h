@@ -39,6 +39,9 @@ struct GravityPotential {
   static constexpr bool kGaussNewtonModel = true;
   // -m g.x: the exact Hessian is zero (Term::affine_energy).
   static constexpr bool kAffineEnergy = true;
+  // Reports count gravity from the gravity vector, without the offset
+  // (Term::uniform_gravity).
+  static constexpr bool kUniformGravity = true;
 
   template <typename T>
   bool operator()(const T* x, T* residual) const {

@@ -30,6 +30,9 @@ constexpr int kOneResidualPerCoordinate = -1;
 //       x_1 - x_0 only (Term::pair_difference);
 //   static constexpr bool kAffineEnergy = true;     the energy itself is affine
 //       in x: its exact Hessian is zero (Term::affine_energy);
+//   static constexpr bool kUniformGravity = true;   the uniform-gravity
+//       potential, which reports count from the gravity vector instead
+//       (Term::uniform_gravity);
 //   bool ResidualCurvature(const double* const* x, const double* c,
 //                          double* curvature) const;
 //       analytic sum_k c_k Hess(r_k) (Term::curvature); without it Newton
@@ -49,6 +52,11 @@ struct DeclaresAffineEnergy : std::false_type {};
 template <class F>
 struct DeclaresAffineEnergy<F, std::void_t<decltype(F::kAffineEnergy)>>
     : std::bool_constant<F::kAffineEnergy> {};
+template <class F, class = void>
+struct DeclaresUniformGravity : std::false_type {};
+template <class F>
+struct DeclaresUniformGravity<F, std::void_t<decltype(F::kUniformGravity)>>
+    : std::bool_constant<F::kUniformGravity> {};
 template <class F, class = void>
 struct HasResidualCurvature : std::false_type {};
 template <class F>
@@ -127,6 +135,7 @@ class TermBuilder {
     term->gauss_newton_model = DeclaresGaussNewtonModel<F>::value;
     term->pair_difference = DeclaresPairDifference<F>::value;
     term->affine_energy = DeclaresAffineEnergy<F>::value;
+    term->uniform_gravity = DeclaresUniformGravity<F>::value;
     if constexpr (HasResidualCurvature<F>::value) {
       term->curvature = [functor](const double* const* x, const double* c, double* curvature) {
         return functor.ResidualCurvature(x, c, curvature);

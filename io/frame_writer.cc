@@ -200,7 +200,7 @@ std::vector<Eigen::Vector3d> FrameWriter::ContactForces() const {
   // The contact effect's barrier forces at x; zero where they cannot be evaluated.
   const State& s = sim_.state();
   Eigen::VectorXd forces;
-  const bool ok = contact_ != nullptr && contact_->filter().BarrierForces(s.x.data(), &forces);
+  const bool ok = contact_ != nullptr && contact_->state().BarrierForces(s.x.data(), &forces);
   std::vector<Eigen::Vector3d> force;
   for (int i = 0; i < s.num_nodes(); ++i) {
     force.push_back(ok ? Eigen::Vector3d(NodePosition(forces, s.dimension, i))

@@ -1,4 +1,4 @@
-// The contact filter's moving obstacles (contact/contact_filter.h, "Moving
+// The contact state's moving obstacles (contact/contact_state.h, "Moving
 // obstacles"): the obstacle time advanced as far as continuous collision
 // detection allows, with the nodes held or along the secant through the last
 // two stages' solutions, the start that secant proposes, and the reach of
@@ -8,18 +8,18 @@
 
 #include <Eigen/Core>
 
-#include "contact/contact_filter.h"
+#include "contact/contact_state.h"
 #include "contact/obstacle.h"
 
 namespace ipstep {
 
-void ContactFilter::AdvanceObstacles(const double* x) {
+void ContactState::AdvanceObstacles(const double* x) {
   time_.Advance([&](double t_a, double t_b) { return Sweep(x, x, t_a, t_b); });
 }
 
-double ContactFilter::AdvanceObstaclesAlongSecant(const double* x) {
+double ContactState::AdvanceObstaclesAlongSecant(const double* x) {
   has_proposal_ = false;
-  const int n = static_cast<int>(accepted_.size());
+  const int n = static_cast<int>(num_coordinates_);
   stage_solutions_.push_back(Eigen::Map<const Eigen::VectorXd>(x, n));
   stage_times_.push_back(time_.tau());
   if (stage_solutions_.size() > 2) {
@@ -59,17 +59,17 @@ double ContactFilter::AdvanceObstaclesAlongSecant(const double* x) {
   return (proposal_ - x_now).cwiseAbs().maxCoeff();
 }
 
-bool ContactFilter::ProposeStart(double* x) {
+bool ContactState::ProposeStart(double* x) {
   if (!has_proposal_) return false;
   has_proposal_ = false;
   std::copy(proposal_.data(), proposal_.data() + proposal_.size(), x);
   return true;
 }
 
-void ContactFilter::StartRejected() { *time_.pointer() = held_tau_; }
+void ContactState::StartRejected() { *time_.pointer() = held_tau_; }
 
-std::vector<double> ContactFilter::RotationRadii(const double* a, const double* b,
-                                                 double reach) const {
+std::vector<double> ContactState::RotationRadii(const double* a, const double* b,
+                                                double reach) const {
   std::vector<double> radius(options_.obstacles.size(), 0.0);
   for (size_t o = 0; o < options_.obstacles.size(); ++o) {
     const Obstacle& obstacle = *options_.obstacles[o];
