@@ -16,8 +16,14 @@
 // cover every combination of primitives, in the active set or not; only the
 // terms are restricted to the set.
 //
-// Adding a pair kind: one new class implementing this interface (one .h/.cc
-// pair in contact/pairs/) and one line in contact/pair_kinds.cc.
+// Adding a pair kind: one class in contact/pairs/ deriving from
+// PairKind<Kind, Pair> (contact/pair_kind.h), which writes the active set,
+// Extend, Missing, Near, the barrier gradient, the penetration search over the
+// pairs, the barrier-term loop and the friction lag loop; the kind writes its
+// candidate search, per-pair distance and derivatives, Extend's rule
+// (Admits), TimeOfImpact and its term factory (SetGap, friction terms); and
+// one line in contact/pair_kinds.cc. A kind that does not fit one Pair type
+// (mesh-obstacle: faces and box edges in one set) implements this interface.
 #pragma once
 
 #include <cstddef>

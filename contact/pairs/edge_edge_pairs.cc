@@ -8,7 +8,6 @@
 #include "contact/barrier.h"
 #include "contact/friction.h"
 #include "contact/self_gap_terms.h"
-#include "core/scoped_timer.h"
 #include "geometry/edge_edge_mollifier.h"
 #include "geometry/segment_segment.h"
 #include "geometry/self_ccd.h"
@@ -16,13 +15,13 @@
 namespace ipstep {
 
 EdgeEdgePairs::EdgeEdgePairs(const PairSetContext& context, const double* rest)
-    : context_(context), geometry_(context.mesh) {
+    : Base(context), geometry_(context.mesh) {
   active_ = context.dimension == 3 && !context.mesh->faces.empty() && !context.mesh->edges.empty();
   if (rest != nullptr) SetRestPositions(rest);
 }
 
 void EdgeEdgePairs::SetRestPositions(const double* x) {
-  const auto& edges = context_.mesh->edges;
+  const auto& edges = c_.mesh->edges;
   rest_length2_.resize(edges.size());
   for (size_t e = 0; e < edges.size(); ++e) {
     rest_length2_[e] =
@@ -37,17 +36,32 @@ double EdgeEdgePairs::MollifierThreshold(const Pair& pair) const {
 }
 
 double EdgeEdgePairs::Distance(const double* x, const Pair& pair) const {
-  const auto& a = context_.mesh->edges[pair.e];
-  const auto& b = context_.mesh->edges[pair.f];
+  const auto& a = c_.mesh->edges[pair.e];
+  const auto& b = c_.mesh->edges[pair.f];
   return SegmentSegmentDistance(SelfContactMesh::Vertex(x, a[0]), SelfContactMesh::Vertex(x, a[1]),
                                 SelfContactMesh::Vertex(x, b[0]), SelfContactMesh::Vertex(x, b[1]))
       .distance;
 }
 
-bool EdgeEdgePairs::PairHasFreeNode(const Pair& pair) const {
-  const std::vector<bool>& free = *context_.node_free;
-  const auto& a = context_.mesh->edges[pair.e];
-  const auto& b = context_.mesh->edges[pair.f];
+EdgeEdgePairs::Measured EdgeEdgePairs::Measure(const double* x, double, const Pair& pair) const {
+  const auto& u = c_.mesh->edges[pair.e];
+  const auto& v = c_.mesh->edges[pair.f];
+  Measured m;
+  m.nodes = {u[0], u[1], v[0], v[1]};
+  for (int k = 0; k < 4; ++k) m.points[k] = SelfContactMesh::Vertex(x, m.nodes[k]);
+  const SegmentSegmentDistanceResult r =
+      SegmentSegmentDistance(m.points[0], m.points[1], m.points[2], m.points[3]);
+  m.distance = r.distance;
+  m.gradient = {r.grad_a0, r.grad_a1, r.grad_b0, r.grad_b1};
+  m.s = r.s;
+  m.t = r.t;
+  return m;
+}
+
+bool EdgeEdgePairs::HasFreeNode(const Pair& pair) const {
+  const std::vector<bool>& free = *c_.node_free;
+  const auto& a = c_.mesh->edges[pair.e];
+  const auto& b = c_.mesh->edges[pair.f];
   return free[geometry_.slot(a[0])] || free[geometry_.slot(a[1])] || free[geometry_.slot(b[0])] ||
          free[geometry_.slot(b[1])];
 }
@@ -56,7 +70,7 @@ template <class F>
 void EdgeEdgePairs::ForEachCandidate(const double* a, const double* b, double grow,
                                      const F& f) const {
   if (!active_) return;
-  const auto& edges = context_.mesh->edges;
+  const auto& edges = c_.mesh->edges;
   auto find = [&](std::vector<Pair>* candidates) {
     SelfContactMesh::BuildTree(edges, a, b, grow, &bvh_);
     for (size_t e = 0; e < edges.size(); ++e) {
@@ -78,42 +92,30 @@ void EdgeEdgePairs::ForEachCandidate(const double* a, const double* b, double gr
 
 bool EdgeEdgePairs::Extend(const CandidateRegion& region) {
   if (!active_) return false;
-  const double* a = region.start;
-  const double* b = region.end != nullptr ? region.end : region.start;
-  if (rest_length2_.empty()) SetRestPositions(a);
-  const std::vector<double>* reach = region.reach;
-  auto node_reach = [&](int node) {
-    const double r = reach != nullptr ? (*reach)[geometry_.slot(node)] : 0.0;
-    return r + (SelfContactMesh::Vertex(b, node) - SelfContactMesh::Vertex(a, node)).norm();
-  };
-  const auto& edges = context_.mesh->edges;
-  bool added = false;
-  ForEachCandidate(a, b, context_.d_hat + region.max_reach, [&](const Pair& pair) {
-    if (!PairHasFreeNode(pair) || pairs_.Contains(pair)) return;
-    const auto& u = edges[pair.e];
-    const auto& v = edges[pair.f];
-    const double limit = context_.d_hat + std::max(node_reach(u[0]), node_reach(u[1])) +
-                         std::max(node_reach(v[0]), node_reach(v[1]));
-    if (Distance(a, pair) < limit) added |= pairs_.Insert(pair);
-  });
-  return added;
+  if (rest_length2_.empty()) SetRestPositions(region.start);
+  return Base::Extend(region);
 }
 
-bool EdgeEdgePairs::Missing(const double* x) const {
-  bool missing = false;
-  ForEachCandidate(x, x, context_.d_hat, [&](const Pair& pair) {
-    if (missing || !PairHasFreeNode(pair)) return;
-    if (Distance(x, pair) < context_.d_hat && !pairs_.Contains(pair)) missing = true;
-  });
-  return missing;
+bool EdgeEdgePairs::Admits(const CandidateRegion& region, const Pair& pair, NoPairData*) const {
+  const double* a = region.start;
+  const double* b = region.end;
+  auto node_reach = [&](int node) {
+    const double r = region.reach != nullptr ? (*region.reach)[geometry_.slot(node)] : 0.0;
+    return r + (SelfContactMesh::Vertex(b, node) - SelfContactMesh::Vertex(a, node)).norm();
+  };
+  const auto& u = c_.mesh->edges[pair.e];
+  const auto& v = c_.mesh->edges[pair.f];
+  const double limit = c_.d_hat + std::max(node_reach(u[0]), node_reach(u[1])) +
+                       std::max(node_reach(v[0]), node_reach(v[1]));
+  return Distance(a, pair) < limit;
 }
 
 double EdgeEdgePairs::TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const {
   (void)t_a;
   (void)t_b;
   double first = kNoImpact;
-  const double margin = context_.margin;
-  const auto& edges = context_.mesh->edges;
+  const double margin = c_.margin;
+  const auto& edges = c_.mesh->edges;
   ForEachCandidate(a, b, margin, [&](const Pair& pair) {
     if (first == 0.0) return;
     const auto& u = edges[pair.e];
@@ -126,111 +128,50 @@ double EdgeEdgePairs::TimeOfImpact(const double* a, const double* b, double t_a,
   return std::min(first, kNoImpact);
 }
 
-std::string EdgeEdgePairs::FindPenetration(const double* x, double t) const {
-  (void)t;
+std::string EdgeEdgePairs::Describe(const Pair& pair) const {
+  const auto& u = c_.mesh->edges[pair.e];
+  const auto& v = c_.mesh->edges[pair.f];
   std::ostringstream out;
-  const auto& edges = context_.mesh->edges;
-  ForEachCandidate(x, x, context_.margin, [&](const Pair& pair) {
-    if (!out.str().empty()) return;
-    const double d = Distance(x, pair);
-    if (d > context_.margin) return;
-    const auto& u = edges[pair.e];
-    const auto& v = edges[pair.f];
-    out << "edge (" << u[0] << ", " << u[1] << ") touches edge (" << v[0] << ", " << v[1]
-        << ") (distance " << d << ")";
-  });
+  out << "edge (" << u[0] << ", " << u[1] << ") touches edge (" << v[0] << ", " << v[1] << ")";
   return out.str();
 }
 
-void EdgeEdgePairs::Near(const double* x, double t, double reach, double* min_distance,
-                         int* count) const {
-  (void)t;
-  ForEachCandidate(x, x, reach, [&](const Pair& pair) {
-    const double d = Distance(x, pair);
-    if (d < reach) {
-      *min_distance = std::min(*min_distance, d);
-      ++*count;
-    }
-  });
+void EdgeEdgePairs::AddPairBarrierGradient(const Pair& pair, const Measured& m, double scale,
+                                           Eigen::VectorXd* g) const {
+  const double d = m.distance, d_hat = c_.d_hat;
+  const auto& p = m.points;
+  const EdgeEdgeMollifier mollifier =
+      EdgeEdgeMollify(p[0], p[1], p[2], p[3], MollifierThreshold(pair), true, false);
+  Eigen::Matrix<double, 12, 1> grad;
+  grad << m.gradient[0], m.gradient[1], m.gradient[2], m.gradient[3];
+  grad =
+      Barrier(d, d_hat) * mollifier.gradient + mollifier.value * BarrierDerivative(d, d_hat) * grad;
+  const double w = scale * Weight(pair);
+  for (int k = 0; k < 4; ++k) g->segment<3>(3 * m.nodes[k]) += w * grad.segment<3>(3 * k);
 }
 
-void EdgeEdgePairs::AddBarrierGradient(const double* x, double t, double scale,
-                                       Eigen::VectorXd* g) const {
-  (void)t;
-  const double d_hat = context_.d_hat;
-  const auto& edges = context_.mesh->edges;
-  ForEachCandidate(x, x, d_hat, [&](const Pair& pair) {
-    const auto& u = edges[pair.e];
-    const auto& v = edges[pair.f];
-    const int nodes[4] = {u[0], u[1], v[0], v[1]};
-    Eigen::Vector3d p[4];
-    for (int k = 0; k < 4; ++k) p[k] = SelfContactMesh::Vertex(x, nodes[k]);
-    const SegmentSegmentDistanceResult r = SegmentSegmentDistance(p[0], p[1], p[2], p[3]);
-    const double d = r.distance;
-    if (!(d > 0.0 && d < d_hat)) return;
-    // grad (m B) = B grad m + m B' grad d (the mollified barrier of the terms).
-    const EdgeEdgeMollifier m =
-        EdgeEdgeMollify(p[0], p[1], p[2], p[3], MollifierThreshold(pair), true, false);
-    Eigen::Matrix<double, 12, 1> grad;
-    grad << r.grad_a0, r.grad_a1, r.grad_b0, r.grad_b1;
-    grad = Barrier(d, d_hat) * m.gradient + m.value * BarrierDerivative(d, d_hat) * grad;
-    const double w = scale * context_.mesh->edge_weights[pair.e];
-    for (int k = 0; k < 4; ++k) g->segment<3>(3 * nodes[k]) += w * grad.segment<3>(3 * k);
-  });
+void EdgeEdgePairs::SetGap(size_t k, Term* term) const {
+  const Pair& pair = pairs_[k];
+  const auto& u = c_.mesh->edges[pair.e];
+  const auto& v = c_.mesh->edges[pair.f];
+  term->nodes = {u[0], u[1], v[0], v[1]};
+  SetGapCost(std::make_unique<EdgeEdgeGap>(c_.d_hat, c_.margin, MollifierThreshold(pair)), term);
 }
 
-void EdgeEdgePairs::AddBarrierTerms(IncrementalPotential* potential) const {
-  const auto& edges = context_.mesh->edges;
-  for (const Pair& pair : pairs_.pairs()) {
-    const auto& u = edges[pair.e];
-    const auto& v = edges[pair.f];
-    Term term;
-    term.kind = TermKind::kPotential;
-    term.SetOwner(context_.barrier);
-    term.impulsive = true;
-    term.nodes = {u[0], u[1], v[0], v[1]};
-    auto cost =
-        std::make_unique<EdgeEdgeGap>(context_.d_hat, context_.margin, MollifierThreshold(pair));
-    const EdgeEdgeGap* gap = cost.get();
-    term.curvature = [gap](const double* const* x, const double* c, double* curvature) {
-      return gap->Curvature(x, c, curvature);
-    };
-    term.cost = std::move(cost);
-    term.loss = std::make_unique<BarrierLoss>(context_.d_hat, context_.mesh->edge_weights[pair.e],
-                                              context_.kappa);
-    potential->AddTerm(std::move(term));
-  }
+bool EdgeEdgePairs::LagPairFriction(const double*, double, const Pair& pair, const Measured& m,
+                                    SelfFrictionLag* lag) const {
+  const auto& p = m.points;
+  const double mollifier =
+      EdgeEdgeMollify(p[0], p[1], p[2], p[3], MollifierThreshold(pair), false, false).value;
+  lag->nodes = m.nodes;
+  lag->alpha = {1.0 - m.s, m.s, -(1.0 - m.t), -m.t};
+  const Eigen::Vector3d n = (p[0] + m.s * (p[1] - p[0]) - p[2] - m.t * (p[3] - p[2])) / m.distance;
+  lag->tangents = SelfTangentBasis(n);
+  lag->normal_force = NormalForce(pair, m.distance, mollifier);
+  return lag->normal_force > 0.0;
 }
 
-void EdgeEdgePairs::LagFriction(const double* x, double t) {
-  (void)t;
-  friction_.clear();
-  const double d_hat = context_.d_hat;
-  const auto& edges = context_.mesh->edges;
-  for (const Pair& pair : pairs_.pairs()) {
-    const auto& u = edges[pair.e];
-    const auto& v = edges[pair.f];
-    SelfFrictionLag lag;
-    lag.nodes = {u[0], u[1], v[0], v[1]};
-    Eigen::Vector3d p[4];
-    for (int k = 0; k < 4; ++k) p[k] = SelfContactMesh::Vertex(x, lag.nodes[k]);
-    const SegmentSegmentDistanceResult r = SegmentSegmentDistance(p[0], p[1], p[2], p[3]);
-    if (!(r.distance > 0.0 && r.distance < d_hat)) continue;
-    const double m =
-        EdgeEdgeMollify(p[0], p[1], p[2], p[3], MollifierThreshold(pair), false, false).value;
-    lag.alpha = {1.0 - r.s, r.s, -(1.0 - r.t), -r.t};
-    const Eigen::Vector3d n =
-        (p[0] + r.s * (p[1] - p[0]) - p[2] - r.t * (p[3] - p[2])) / r.distance;
-    lag.tangents = SelfTangentBasis(n);
-    lag.normal_force = -*context_.kappa * context_.mesh->edge_weights[pair.e] * m *
-                       BarrierDerivative(r.distance, d_hat);
-    if (lag.normal_force > 0.0) friction_.push_back(lag);
-  }
-}
-
-int EdgeEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
-                                    IncrementalPotential* potential) const {
-  return AddSelfFrictionTerms(friction_, context_.step, context_.friction, friction, potential);
-}
+// After ForEachCandidate, which the base's loops call.
+template class PairKind<EdgeEdgePairs, EdgeEdgePair, NoPairData, SelfFrictionLag>;
 
 }  // namespace ipstep

@@ -22,16 +22,23 @@
 
 #include <Eigen/Core>
 
-#include "contact/pair_set.h"
+#include "contact/pair_kind.h"
 #include "contact/pairs/candidate_cache.h"
 #include "contact/pairs/self_contact_mesh.h"
 #include "contact/self_gap_terms.h"
-#include "contact/sorted_pairs.h"
 
 namespace ipstep {
 
-class EdgeEdgePairs : public PairSet {
+struct EdgeEdgePair {
+  int e;  // indices into mesh->edges, e < f
+  int f;
+  bool operator<(const EdgeEdgePair& o) const { return e != o.e ? e < o.e : f < o.f; }
+  bool operator==(const EdgeEdgePair& o) const { return e == o.e && f == o.f; }
+};
+
+class EdgeEdgePairs : public PairKind<EdgeEdgePairs, EdgeEdgePair, NoPairData, SelfFrictionLag> {
  public:
+  using Pair = EdgeEdgePair;
   // `rest`: rest positions (a full configuration) for the mollifier, or null
   // (then those of the first Extend). Registered only when the scene turns
   // self-contact on (contact/pair_kinds.cc).
@@ -42,51 +49,56 @@ class EdgeEdgePairs : public PairSet {
   // Rest positions (full state vector) for the mollifier's thresholds.
   void SetRestPositions(const double* x);
 
-  void Clear() override { pairs_.Clear(); }
-  size_t size() const override { return pairs_.size(); }
-  bool ChangedSinceClear() const override { return pairs_.Changed(); }
   bool Extend(const CandidateRegion& region) override;
-  bool Missing(const double* x) const override;
-
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
   double BroadPhaseSeconds() const override { return broad_phase_seconds_; }
-  std::string FindPenetration(const double* x, double t) const override;
-  void Near(const double* x, double t, double reach, double* min_distance,
-            int* count) const override;
-  void AddBarrierGradient(const double* x, double t, double scale,
-                          Eigen::VectorXd* g) const override;
 
-  void AddBarrierTerms(IncrementalPotential* potential) const override;
-  void LagFriction(const double* x, double t) override;
-  int AddFrictionTerms(const FrictionSettings& friction,
-                       IncrementalPotential* potential) const override;
-
-  struct Pair {
-    int e;  // indices into mesh->edges, e < f
-    int f;
-    bool operator<(const Pair& o) const { return e != o.e ? e < o.e : f < o.f; }
-    bool operator==(const Pair& o) const { return e == o.e && f == o.f; }
-  };
-  const std::vector<Pair>& pairs() const { return pairs_.pairs(); }
   double Distance(const double* x, const Pair& pair) const;
   // eps_x of a pair (0 before rest positions are known: no mollifier).
   double MollifierThreshold(const Pair& pair) const;
 
  private:
-  bool PairHasFreeNode(const Pair& pair) const;
+  using Base = PairKind<EdgeEdgePairs, EdgeEdgePair, NoPairData, SelfFrictionLag>;
+  friend Base;
+  // The segment-segment distance with its gradients over (a0, a1, b0, b1),
+  // the closest points' parameters s, t and the four positions.
+  struct Measured : PairDistance<4> {
+    double s = 0.0, t = 0.0;
+    std::array<Eigen::Vector3d, 4> points;
+  };
+
   template <class F>
   void ForEachCandidate(const double* a, const double* b, double grow, const F& f) const;
+  bool HasFreeNode(const Pair& pair) const;
+  double Weight(const Pair& pair) const { return c_.mesh->edge_weights[pair.e]; }
+  double Distance(const double* x, double t, const Pair& pair) const {
+    (void)t;
+    return Distance(x, pair);
+  }
+  Measured Measure(const double* x, double t, const Pair& pair) const;
+  bool Admits(const CandidateRegion& region, const Pair& pair, NoPairData* data) const;
+  std::string Describe(const Pair& pair) const;
+  // grad (m B) = B grad m + m B' grad d (the mollified barrier of the terms).
+  void AddPairBarrierGradient(const Pair& pair, const Measured& measured, double scale,
+                              Eigen::VectorXd* g) const;
+  void SetGap(size_t k, Term* term) const;
+  bool LagPairFriction(const double* x, double t, const Pair& pair, const Measured& measured,
+                       SelfFrictionLag* lag) const;
+  int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
+                    IncrementalPotential* potential) const {
+    return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
+  }
 
-  PairSetContext context_;
   SelfContactMesh geometry_;
   bool active_ = false;
   std::vector<double> rest_length2_;  // per edge
-  SortedPairs<Pair> pairs_;
-  std::vector<SelfFrictionLag> friction_;
   mutable Bvh bvh_;
   mutable std::vector<int> ids_;
   mutable CandidateCache<Pair> candidates_;  // ForEachCandidate's broad-phase output
   mutable double broad_phase_seconds_ = 0.0;
 };
+
+// Instantiated once, in the .cc (where ForEachCandidate is defined).
+extern template class PairKind<EdgeEdgePairs, EdgeEdgePair, NoPairData, SelfFrictionLag>;
 
 }  // namespace ipstep

@@ -11,57 +11,52 @@
 
 namespace ipstep {
 
-EdgeObstaclePairs::EdgeObstaclePairs(const PairSetContext& context) : c_(context) {
+EdgeObstaclePairs::EdgeObstaclePairs(const PairSetContext& context) : Base(context) {
   for (const auto& e : c_.mesh->edges) {
     edge_slots_.push_back({NodeSlot(*c_.mesh, e[0]), NodeSlot(*c_.mesh, e[1])});
   }
 }
 
-double EdgeObstaclePairs::Distance(const double* x, double t, const Pair& p,
-                                   Eigen::Vector3d* grad_a, Eigen::Vector3d* grad_b) const {
+double EdgeObstaclePairs::Distance(const double* x, double t, const Pair& p) const {
   return (*c_.obstacles)[p.obstacle]->EdgeDistance(p.feature, End(x, p.edge, 0), End(x, p.edge, 1),
-                                                   t, grad_a, grad_b);
+                                                   t);
 }
 
-std::vector<EdgeObstaclePairs::Pair> EdgeObstaclePairs::All(bool free_only) const {
-  std::vector<Pair> pairs;
+PairDistance<2> EdgeObstaclePairs::Measure(const double* x, double t, const Pair& p) const {
+  PairDistance<2> m;
+  m.nodes = c_.mesh->edges[p.edge];
+  m.distance = (*c_.obstacles)[p.obstacle]->EdgeDistance(
+      p.feature, End(x, p.edge, 0), End(x, p.edge, 1), t, &m.gradient[0], &m.gradient[1]);
+  return m;
+}
+
+bool EdgeObstaclePairs::HasFreeNode(const Pair& pair) const {
   const std::vector<bool>& node_free = *c_.node_free;
+  return node_free[edge_slots_[pair.edge][0]] || node_free[edge_slots_[pair.edge][1]];
+}
+
+template <class F>
+void EdgeObstaclePairs::ForEachCandidate(const double*, const double*, double, const F& f) const {
   for (size_t e = 0; e < c_.mesh->edges.size(); ++e) {
-    if (free_only && !node_free[edge_slots_[e][0]] && !node_free[edge_slots_[e][1]]) continue;
     for (size_t o = 0; o < c_.obstacles->size(); ++o) {
       const int features = (*c_.obstacles)[o]->NumEdgeFeatures();
-      for (int f = 0; f < features; ++f) {
-        pairs.push_back(Pair{static_cast<int>(e), static_cast<int>(o), f});
-      }
+      for (int k = 0; k < features; ++k) f(Pair{static_cast<int>(e), static_cast<int>(o), k});
     }
   }
-  return pairs;
 }
 
-bool EdgeObstaclePairs::Extend(const CandidateRegion& region) {
-  bool added = false;
+bool EdgeObstaclePairs::Admits(const CandidateRegion& region, const Pair& pair,
+                               double* alpha) const {
   const std::vector<double>& reach = *region.reach;
-  for (const Pair& pair : All(true)) {
-    const auto& slots = edge_slots_[pair.edge];
-    const double d = Distance(region.start, *c_.time, pair);
-    if (!(d < c_.d_hat + std::max(reach[slots[0]], reach[slots[1]]) +
-                  (*region.travel)[pair.obstacle])) {
-      continue;
-    }
-    if (pairs_.Contains(pair)) continue;
-    double alpha = 0.0;
-    PointSegmentDistance((*c_.obstacles)[pair.obstacle]->EdgeFeature(pair.feature, *c_.time),
-                         End(region.start, pair.edge, 0), End(region.start, pair.edge, 1), &alpha);
-    added |= pairs_.Insert(pair, alpha);
+  const auto& slots = edge_slots_[pair.edge];
+  const double d = Distance(region.start, *c_.time, pair);
+  if (!(d <
+        c_.d_hat + std::max(reach[slots[0]], reach[slots[1]]) + (*region.travel)[pair.obstacle])) {
+    return false;
   }
-  return added;
-}
-
-bool EdgeObstaclePairs::Missing(const double* x) const {
-  for (const Pair& p : All(true)) {
-    if (Distance(x, *c_.time, p) < c_.d_hat && !pairs_.Contains(p)) return true;
-  }
-  return false;
+  PointSegmentDistance((*c_.obstacles)[pair.obstacle]->EdgeFeature(pair.feature, *c_.time),
+                       End(region.start, pair.edge, 0), End(region.start, pair.edge, 1), alpha);
+  return true;
 }
 
 double EdgeObstaclePairs::TimeOfImpact(const double* a, const double* b, double t_a,
@@ -136,64 +131,26 @@ std::string EdgeObstaclePairs::Conflict(const double* a, const double* x, double
 
 std::string EdgeObstaclePairs::FindPenetration(const double* x, double t) const {
   const std::string conflict = Conflict(x, x, t);
-  if (!conflict.empty()) return conflict;
-  for (const Pair& p : All(false)) {
-    const double d = Distance(x, t, p);
-    if (!(d > c_.margin)) {
-      const auto& e = c_.mesh->edges[p.edge];
-      std::ostringstream out;
-      out << "edge (" << e[0] << ", " << e[1] << ") is inside or touching "
-          << (*c_.obstacles)[p.obstacle]->name() << " (distance " << d << ")";
-      return out.str();
-    }
-  }
-  return "";
+  return conflict.empty() ? Base::FindPenetration(x, t) : conflict;
 }
 
-void EdgeObstaclePairs::Near(const double* x, double t, double reach, double* min_distance,
-                             int* count) const {
-  for (const Pair& p : All(false)) {
-    const double d = Distance(x, t, p);
-    if (d < reach) {
-      *min_distance = std::min(*min_distance, d);
-      ++*count;
-    }
-  }
+std::string EdgeObstaclePairs::Describe(const Pair& pair) const {
+  const auto& e = c_.mesh->edges[pair.edge];
+  std::ostringstream out;
+  out << "edge (" << e[0] << ", " << e[1] << ") is inside or touching "
+      << (*c_.obstacles)[pair.obstacle]->name();
+  return out.str();
 }
 
-void EdgeObstaclePairs::AddBarrierGradient(const double* x, double t, double scale,
-                                           Eigen::VectorXd* g) const {
-  const int dim = c_.dimension;
-  for (const Pair& p : All(false)) {
-    Eigen::Vector3d grad[2];
-    const double d = Distance(x, t, p, &grad[0], &grad[1]);
-    if (!(d > 0.0 && d < c_.d_hat)) continue;
-    const double w = scale * c_.mesh->edge_weights[p.edge] * BarrierDerivative(d, c_.d_hat);
-    for (int end = 0; end < 2; ++end) {
-      const int node = c_.mesh->edges[p.edge][end];
-      for (int k = 0; k < dim; ++k) (*g)[dim * node + k] += w * grad[end][k];
-    }
-  }
-}
-
-void EdgeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
-  for (size_t k = 0; k < pairs_.size(); ++k) {
-    const Pair& pair = pairs_[k];
-    const auto& e = c_.mesh->edges[pair.edge];
-    Term term;
-    term.kind = TermKind::kPotential;
-    term.SetOwner(c_.barrier);
-    term.impulsive = true;
-    term.nodes = {e[0], e[1]};
-    const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
-    auto cost = std::make_unique<EdgeObstacleGap>(
-        c_.dimension, &obstacle, pair.feature, c_.time, c_.d_hat, c_.margin,
-        obstacle.FeatureRadius() > 0.0 ? &pairs_.data()[k] : nullptr);
-    term.curvature = GapCurvature(cost.get());
-    term.cost = std::move(cost);
-    term.loss = std::make_unique<BarrierLoss>(c_.d_hat, c_.mesh->edge_weights[pair.edge], c_.kappa);
-    potential->AddTerm(std::move(term));
-  }
+void EdgeObstaclePairs::SetGap(size_t k, Term* term) const {
+  const Pair& pair = pairs_[k];
+  const auto& e = c_.mesh->edges[pair.edge];
+  term->nodes = {e[0], e[1]};
+  const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
+  SetGapCost(std::make_unique<EdgeObstacleGap>(
+                 c_.dimension, &obstacle, pair.feature, c_.time, c_.d_hat, c_.margin,
+                 obstacle.FeatureRadius() > 0.0 ? &pairs_.data()[k] : nullptr),
+             term);
 }
 
 double EdgeObstaclePairs::Lag(const double* x) {
@@ -214,5 +171,8 @@ double EdgeObstaclePairs::Lag(const double* x) {
   }
   return excess;
 }
+
+// After ForEachCandidate, which the base's loops call.
+template class PairKind<EdgeObstaclePairs, EdgeObstaclePair, double>;
 
 }  // namespace ipstep

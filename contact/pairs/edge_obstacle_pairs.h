@@ -15,72 +15,74 @@
 // ShrinkToClear halves the step until it is clear.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "contact/pair_set.h"
-#include "contact/sorted_pairs.h"
+#include "contact/pair_kind.h"
 
 namespace ipstep {
 
-class EdgeObstaclePairs : public PairSet {
+struct EdgeObstaclePair {
+  int edge;  // index into mesh->edges
+  int obstacle;
+  int feature;  // Obstacle::EdgeFeature
+  bool operator<(const EdgeObstaclePair& o) const {
+    if (edge != o.edge) return edge < o.edge;
+    return obstacle != o.obstacle ? obstacle < o.obstacle : feature < o.feature;
+  }
+  bool operator==(const EdgeObstaclePair& o) const {
+    return edge == o.edge && obstacle == o.obstacle && feature == o.feature;
+  }
+};
+
+// Per pair: the lagged closest-point parameter (read by its term).
+class EdgeObstaclePairs : public PairKind<EdgeObstaclePairs, EdgeObstaclePair, double> {
  public:
+  using Pair = EdgeObstaclePair;
   explicit EdgeObstaclePairs(const PairSetContext& context);
 
   const char* name() const override { return "edge-obstacle"; }
-  void Clear() override { pairs_.Clear(); }
-  size_t size() const override { return pairs_.size(); }
-  bool ChangedSinceClear() const override { return pairs_.Changed(); }
-  bool Extend(const CandidateRegion& region) override;
-  bool Missing(const double* x) const override;
-
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
   double ShrinkToClear(const double* from, const double* to, double t) const override;
+  // The 2D crossings (Conflict), then the pairs' distances.
   std::string FindPenetration(const double* x, double t) const override;
-  void Near(const double* x, double t, double reach, double* min_distance,
-            int* count) const override;
-  void AddBarrierGradient(const double* x, double t, double scale,
-                          Eigen::VectorXd* g) const override;
 
-  void AddBarrierTerms(IncrementalPotential* potential) const override;
   bool TermsReadLags() const override { return !pairs_.empty(); }
   double Lag(const double* x) override;
   void SaveLags() override { saved_ = pairs_.data(); }
   void RestoreLags() override { pairs_.data() = saved_; }
 
  private:
-  struct Pair {
-    int edge;  // index into mesh->edges
-    int obstacle;
-    int feature;  // Obstacle::EdgeFeature
-    bool operator<(const Pair& o) const {
-      if (edge != o.edge) return edge < o.edge;
-      return obstacle != o.obstacle ? obstacle < o.obstacle : feature < o.feature;
-    }
-    bool operator==(const Pair& o) const {
-      return edge == o.edge && obstacle == o.obstacle && feature == o.feature;
-    }
-  };
+  using Base = PairKind<EdgeObstaclePairs, EdgeObstaclePair, double>;
+  friend Base;
 
   Eigen::Vector3d End(const double* x, int edge, int end) const {
     return ToPoint(x + c_.dimension * c_.mesh->edges[edge][end], c_.dimension);
   }
-  double Distance(const double* x, double t, const Pair& p, Eigen::Vector3d* grad_a = nullptr,
-                  Eigen::Vector3d* grad_b = nullptr) const;
-  // Every edge-feature combination (edges with a free node when `free_only`).
-  std::vector<Pair> All(bool free_only) const;
+  // Every edge-feature combination (no broad phase).
+  template <class F>
+  void ForEachCandidate(const double* a, const double* b, double grow, const F& f) const;
+  bool HasFreeNode(const Pair& pair) const;
+  double Weight(const Pair& pair) const { return c_.mesh->edge_weights[pair.edge]; }
+  double Distance(const double* x, double t, const Pair& p) const;
+  PairDistance<2> Measure(const double* x, double t, const Pair& p) const;
+  // A new pair's lag: the closest point at the start.
+  bool Admits(const CandidateRegion& region, const Pair& pair, double* alpha) const;
+  std::string Describe(const Pair& pair) const;
+  void SetGap(size_t k, Term* term) const;
   // 2D: empty if no edge at x (time t) meets a circle or box and, moving
   // linearly from a, no circle centre or box corner crosses an edge (a == x:
   // the static check only); else a description.
   std::string Conflict(const double* a, const double* x, double t) const;
 
-  PairSetContext c_;
   std::vector<std::array<int, 2>> edge_slots_;  // slots of each edge's nodes
-  // Per pair: the lagged closest-point parameter (read by its term).
-  SortedPairs<Pair, double> pairs_;
   std::vector<double> saved_;
 };
+
+// Instantiated once, in the .cc (where ForEachCandidate is defined).
+extern template class PairKind<EdgeObstaclePairs, EdgeObstaclePair, double>;
 
 }  // namespace ipstep

@@ -16,34 +16,28 @@ Eigen::Vector3d NodeObstaclePairs::Point(const double* x, int slot) const {
   return ToPoint(x + c_.dimension * c_.mesh->nodes[slot], c_.dimension);
 }
 
-bool NodeObstaclePairs::Extend(const CandidateRegion& region) {
-  bool added = false;
-  const ObstacleList& obstacles = *c_.obstacles;
-  for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    if (!(*c_.node_free)[s]) continue;
-    const Eigen::Vector3d p = Point(region.start, static_cast<int>(s));
-    for (size_t o = 0; o < obstacles.size(); ++o) {
-      const double d = obstacles[o]->Distance(p, *c_.time);
-      if (d < c_.d_hat + (*region.reach)[s] + (*region.travel)[o]) {
-        added |= pairs_.Insert(Pair{static_cast<int>(s), static_cast<int>(o)});
-      }
-    }
+template <class F>
+void NodeObstaclePairs::ForEachCandidate(const double*, const double*, double, const F& f) const {
+  const int num_obstacles = static_cast<int>(c_.obstacles->size());
+  for (int s = 0; s < static_cast<int>(c_.mesh->nodes.size()); ++s) {
+    for (int o = 0; o < num_obstacles; ++o) f(Pair{s, o});
   }
-  return added;
 }
 
-bool NodeObstaclePairs::Missing(const double* x) const {
-  const ObstacleList& obstacles = *c_.obstacles;
-  for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    if (!(*c_.node_free)[s]) continue;
-    for (size_t o = 0; o < obstacles.size(); ++o) {
-      if (obstacles[o]->Distance(Point(x, static_cast<int>(s)), *c_.time) < c_.d_hat &&
-          !pairs_.Contains(Pair{static_cast<int>(s), static_cast<int>(o)})) {
-        return true;
-      }
-    }
-  }
-  return false;
+double NodeObstaclePairs::Distance(const double* x, double t, const Pair& pair) const {
+  return (*c_.obstacles)[pair.obstacle]->Distance(Point(x, pair.slot), t);
+}
+
+PairDistance<1> NodeObstaclePairs::Measure(const double* x, double t, const Pair& pair) const {
+  PairDistance<1> m;
+  m.nodes = {c_.mesh->nodes[pair.slot]};
+  m.distance = (*c_.obstacles)[pair.obstacle]->Distance(Point(x, pair.slot), t, &m.gradient[0]);
+  return m;
+}
+
+bool NodeObstaclePairs::Admits(const CandidateRegion& region, const Pair& pair, NoPairData*) const {
+  return Distance(region.start, *c_.time, pair) <
+         c_.d_hat + (*region.reach)[pair.slot] + (*region.travel)[pair.obstacle];
 }
 
 double NodeObstaclePairs::TimeOfImpact(const double* a, const double* b, double t_a,
@@ -59,94 +53,45 @@ double NodeObstaclePairs::TimeOfImpact(const double* a, const double* b, double 
   return first;
 }
 
-std::string NodeObstaclePairs::FindPenetration(const double* x, double t) const {
-  for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
-      const Obstacle& o = *o_ptr;
-      const double d = o.Distance(Point(x, static_cast<int>(s)), t);
-      if (!(d > c_.margin)) {
-        std::ostringstream out;
-        out << "node " << c_.mesh->nodes[s] << " is inside or touching " << o.name()
-            << " (distance " << d << ")";
-        return out.str();
-      }
-    }
-  }
-  return "";
+std::string NodeObstaclePairs::Describe(const Pair& pair) const {
+  std::ostringstream out;
+  out << "node " << c_.mesh->nodes[pair.slot] << " is inside or touching "
+      << (*c_.obstacles)[pair.obstacle]->name();
+  return out.str();
 }
 
-void NodeObstaclePairs::Near(const double* x, double t, double reach, double* min_distance,
-                             int* count) const {
-  for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
-      const Obstacle& o = *o_ptr;
-      const double d = o.Distance(Point(x, static_cast<int>(s)), t);
-      if (d < reach) {
-        *min_distance = std::min(*min_distance, d);
-        ++*count;
-      }
-    }
+void NodeObstaclePairs::SetGap(size_t k, Term* term) const {
+  const Pair& pair = pairs_[k];
+  term->nodes = {c_.mesh->nodes[pair.slot]};
+  const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
+  auto cost =
+      std::make_unique<PointObstacleGap>(c_.dimension, &obstacle, c_.time, c_.d_hat, c_.margin);
+  if (obstacle.distance_is_affine()) {
+    term->gauss_newton_model = true;  // a plane's distance: its model is exact
+    term->cost = std::move(cost);
+  } else {
+    SetGapCost(std::move(cost), term);
   }
 }
 
-void NodeObstaclePairs::AddBarrierGradient(const double* x, double t, double scale,
-                                           Eigen::VectorXd* g) const {
-  const int dim = c_.dimension;
-  for (size_t s = 0; s < c_.mesh->nodes.size(); ++s) {
-    for (const ObstaclePtr& o_ptr : *c_.obstacles) {
-      const Obstacle& o = *o_ptr;
-      Eigen::Vector3d grad;
-      const double d = o.Distance(Point(x, static_cast<int>(s)), t, &grad);
-      if (!(d > 0.0 && d < c_.d_hat)) continue;
-      const double w = scale * c_.mesh->weights[s] * BarrierDerivative(d, c_.d_hat);
-      for (int k = 0; k < dim; ++k) (*g)[dim * c_.mesh->nodes[s] + k] += w * grad[k];
-    }
-  }
+bool NodeObstaclePairs::LagPairFriction(const double* x, double t, const Pair& pair,
+                                        const PairDistance<1>& m,
+                                        NodeObstacleFrictionLag* lag) const {
+  const Obstacle& o = *(*c_.obstacles)[pair.obstacle];
+  *lag = NodeObstacleFrictionLag{m.nodes[0], TangentBasis(m.gradient[0], c_.dimension),
+                                 o.VelocityAt(Point(x, pair.slot), t),
+                                 NormalForce(pair, m.distance), &o};
+  return true;
 }
 
-void NodeObstaclePairs::AddBarrierTerms(IncrementalPotential* potential) const {
-  for (const Pair& pair : pairs_.pairs()) {
-    Term term;
-    term.kind = TermKind::kPotential;
-    term.SetOwner(c_.barrier);
-    term.impulsive = true;
-    term.nodes = {c_.mesh->nodes[pair.slot]};
-    const Obstacle& obstacle = *(*c_.obstacles)[pair.obstacle];
-    auto cost =
-        std::make_unique<PointObstacleGap>(c_.dimension, &obstacle, c_.time, c_.d_hat, c_.margin);
-    if (obstacle.distance_is_affine()) {
-      term.gauss_newton_model = true;  // a plane's distance: its model is exact
-    } else {
-      term.curvature = GapCurvature(cost.get());
-    }
-    term.cost = std::move(cost);
-    term.loss = std::make_unique<BarrierLoss>(c_.d_hat, c_.mesh->weights[pair.slot], c_.kappa);
-    potential->AddTerm(std::move(term));
-  }
-}
-
-void NodeObstaclePairs::LagFriction(const double* x, double t) {
-  lagged_.clear();
-  for (const Pair& pair : pairs_.pairs()) {
-    const Obstacle& o = *(*c_.obstacles)[pair.obstacle];
-    Eigen::Vector3d n;
-    const Eigen::Vector3d point = Point(x, pair.slot);
-    const double d = o.Distance(point, t, &n);
-    if (!(d > 0.0 && d < c_.d_hat)) continue;
-    const double lambda = -*c_.kappa * c_.mesh->weights[pair.slot] * BarrierDerivative(d, c_.d_hat);
-    lagged_.push_back(LaggedFriction{c_.mesh->nodes[pair.slot], TangentBasis(n, c_.dimension),
-                                     o.VelocityAt(point, t), lambda, &o});
-  }
-}
-
-int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
-                                        IncrementalPotential* potential) const {
-  // 3D: one term per contact (side 0); 2D: the exact split, one term per side.
+int NodeObstaclePairs::FrictionTerms(const std::vector<NodeObstacleFrictionLag>& lags,
+                                     const FrictionSettings& friction,
+                                     IncrementalPotential* potential) const {
   const double eps_v = friction.epsilon_v;
   const double c = kFrictionSpeedScale * eps_v;
   const std::vector<int> sides = c_.dimension == 2 ? std::vector<int>{1, -1} : std::vector<int>{0};
   int count = 0;
-  for (const LaggedFriction& f : lagged_) {
+  for (const NodeObstacleFrictionLag& f : lags) {
     const double mu = friction.ForObstacle(*f.obstacle);
     if (!(mu > 0.0)) continue;
     ++count;
@@ -170,5 +115,8 @@ int NodeObstaclePairs::AddFrictionTerms(const FrictionSettings& friction,
   }
   return count;
 }
+
+// After ForEachCandidate, which the base's loops call.
+template class PairKind<NodeObstaclePairs, NodeObstaclePair, NoPairData, NodeObstacleFrictionLag>;
 
 }  // namespace ipstep

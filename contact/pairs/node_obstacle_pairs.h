@@ -10,56 +10,63 @@
 
 #include <Eigen/Core>
 
-#include "contact/pair_set.h"
-#include "contact/sorted_pairs.h"
+#include "contact/pair_kind.h"
 
 namespace ipstep {
 
-class NodeObstaclePairs : public PairSet {
+struct NodeObstaclePair {
+  int slot;  // index into mesh->nodes
+  int obstacle;
+  bool operator<(const NodeObstaclePair& o) const {
+    return slot != o.slot ? slot < o.slot : obstacle < o.obstacle;
+  }
+  bool operator==(const NodeObstaclePair& o) const {
+    return slot == o.slot && obstacle == o.obstacle;
+  }
+};
+
+// A node-obstacle contact's friction lagged at the start of the step.
+struct NodeObstacleFrictionLag {
+  int node;
+  Eigen::Matrix3d tangents;
+  Eigen::Vector3d obstacle_velocity;  // at the lag's time
+  double normal_force;
+  const Obstacle* obstacle;  // its friction coefficient (FrictionSettings)
+};
+
+class NodeObstaclePairs
+    : public PairKind<NodeObstaclePairs, NodeObstaclePair, NoPairData, NodeObstacleFrictionLag> {
  public:
-  explicit NodeObstaclePairs(const PairSetContext& context) : c_(context) {}
+  using Pair = NodeObstaclePair;
+  explicit NodeObstaclePairs(const PairSetContext& context) : Base(context) {}
 
   const char* name() const override { return "node-obstacle"; }
-  void Clear() override { pairs_.Clear(); }
-  size_t size() const override { return pairs_.size(); }
-  bool ChangedSinceClear() const override { return pairs_.Changed(); }
-  bool Extend(const CandidateRegion& region) override;
-  bool Missing(const double* x) const override;
-
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
-  std::string FindPenetration(const double* x, double t) const override;
-  void Near(const double* x, double t, double reach, double* min_distance,
-            int* count) const override;
-  void AddBarrierGradient(const double* x, double t, double scale,
-                          Eigen::VectorXd* g) const override;
-
-  void AddBarrierTerms(IncrementalPotential* potential) const override;
-  void LagFriction(const double* x, double t) override;
-  int AddFrictionTerms(const FrictionSettings& friction,
-                       IncrementalPotential* potential) const override;
 
  private:
-  struct Pair {
-    int slot;  // index into mesh->nodes
-    int obstacle;
-    bool operator<(const Pair& o) const {
-      return slot != o.slot ? slot < o.slot : obstacle < o.obstacle;
-    }
-    bool operator==(const Pair& o) const { return slot == o.slot && obstacle == o.obstacle; }
-  };
-  struct LaggedFriction {
-    int node;
-    Eigen::Matrix3d tangents;
-    Eigen::Vector3d obstacle_velocity;  // at the lag's time
-    double normal_force;
-    const Obstacle* obstacle;  // its friction coefficient (FrictionSettings)
-  };
+  using Base = PairKind<NodeObstaclePairs, NodeObstaclePair, NoPairData, NodeObstacleFrictionLag>;
+  friend Base;
 
   Eigen::Vector3d Point(const double* x, int slot) const;
-
-  PairSetContext c_;
-  SortedPairs<Pair> pairs_;
-  std::vector<LaggedFriction> lagged_;
+  // Every node-obstacle combination (no broad phase).
+  template <class F>
+  void ForEachCandidate(const double* a, const double* b, double grow, const F& f) const;
+  bool HasFreeNode(const Pair& pair) const { return (*c_.node_free)[pair.slot]; }
+  double Weight(const Pair& pair) const { return c_.mesh->weights[pair.slot]; }
+  double Distance(const double* x, double t, const Pair& pair) const;
+  PairDistance<1> Measure(const double* x, double t, const Pair& pair) const;
+  bool Admits(const CandidateRegion& region, const Pair& pair, NoPairData* data) const;
+  std::string Describe(const Pair& pair) const;
+  void SetGap(size_t k, Term* term) const;
+  bool LagPairFriction(const double* x, double t, const Pair& pair, const PairDistance<1>& measured,
+                       NodeObstacleFrictionLag* lag) const;
+  // 3D: one term per contact (side 0); 2D: the exact split, one term per side.
+  int FrictionTerms(const std::vector<NodeObstacleFrictionLag>& lags,
+                    const FrictionSettings& friction, IncrementalPotential* potential) const;
 };
+
+// Instantiated once, in the .cc (where ForEachCandidate is defined).
+extern template class PairKind<NodeObstaclePairs, NodeObstaclePair, NoPairData,
+                               NodeObstacleFrictionLag>;
 
 }  // namespace ipstep

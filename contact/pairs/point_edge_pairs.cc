@@ -13,7 +13,9 @@
 namespace ipstep {
 
 PointEdgePairs::PointEdgePairs(const PairSetContext& context, const double* initial)
-    : c_(context), active_(context.dimension == 2 && !context.mesh->edges.empty()), hash_(2, 1.0) {
+    : Base(context),
+      active_(context.dimension == 2 && !context.mesh->edges.empty()),
+      hash_(2, 1.0) {
   if (!active_) return;
   double total = 0.0;
   for (const auto& e : c_.mesh->edges) {
@@ -28,9 +30,22 @@ bool PointEdgePairs::HasFreeNode(const Pair& pair) const {
   return (*c_.node_free)[pair.slot] || free(e[0]) || free(e[1]);
 }
 
-double PointEdgePairs::Distance(const double* x, const Pair& p) const {
+double PointEdgePairs::Distance(const double* x, double, const Pair& p) const {
   const auto& e = c_.mesh->edges[p.edge];
   return PointEdgeDistance(Node(x, c_.mesh->nodes[p.slot]), Node(x, e[0]), Node(x, e[1])).distance;
+}
+
+PointEdgePairs::Measured PointEdgePairs::Measure(const double* x, double, const Pair& p) const {
+  const auto& e = c_.mesh->edges[p.edge];
+  const int node = c_.mesh->nodes[p.slot];
+  const PointEdgeDistanceResult r = PointEdgeDistance(Node(x, node), Node(x, e[0]), Node(x, e[1]));
+  Measured m;
+  m.distance = r.distance;
+  m.nodes = {node, e[0], e[1]};
+  m.gradient = {ToPoint(r.grad_p.data(), 2), ToPoint(r.grad_a.data(), 2),
+                ToPoint(r.grad_b.data(), 2)};
+  m.alpha = r.alpha;
+  return m;
 }
 
 void PointEdgePairs::Candidates(const double* a, const double* b, double grow,
@@ -58,23 +73,12 @@ void PointEdgePairs::Candidates(const double* a, const double* b, double grow,
   }
 }
 
-bool PointEdgePairs::Extend(const CandidateRegion& region) {
+template <class F>
+void PointEdgePairs::ForEachCandidate(const double* a, const double* b, double grow,
+                                      const F& f) const {
   std::vector<Pair> candidates;
-  Candidates(region.start, region.end, c_.d_hat + region.max_reach, &candidates);
-  bool added = false;
-  for (const Pair& pair : candidates) {
-    if (HasFreeNode(pair)) added |= pairs_.Insert(pair);
-  }
-  return added;
-}
-
-bool PointEdgePairs::Missing(const double* x) const {
-  std::vector<Pair> candidates;
-  Candidates(x, x, c_.d_hat, &candidates);
-  for (const Pair& p : candidates) {
-    if (HasFreeNode(p) && Distance(x, p) < c_.d_hat && !pairs_.Contains(p)) return true;
-  }
-  return false;
+  Candidates(a, b, grow, &candidates);
+  for (const Pair& pair : candidates) f(pair);
 }
 
 double PointEdgePairs::TimeOfImpact(const double* a, const double* b, double, double) const {
@@ -87,28 +91,23 @@ double PointEdgePairs::TimeOfImpact(const double* a, const double* b, double, do
     const int node = c_.mesh->nodes[p.slot];
     first = std::min(first, PointEdgeTimeOfImpact(Node(a, node), Node(b, node), Node(a, e[0]),
                                                   Node(b, e[0]), Node(a, e[1]), Node(b, e[1])));
-    end_too_close |= !(Distance(b, p) > c_.margin);
+    end_too_close |= !(Distance(b, 0.0, p) > c_.margin);
   }
   // The impact test stops at contact; the margin is checked at the end.
   if (first > 1.0 && end_too_close) first = 1.0;
   return first;
 }
 
-std::string PointEdgePairs::FindPenetration(const double* x, double) const {
+std::string PointEdgePairs::Describe(const Pair& pair) const {
+  const auto& e = c_.mesh->edges[pair.edge];
+  std::ostringstream out;
+  out << "boundary node " << c_.mesh->nodes[pair.slot] << " touches boundary edge (" << e[0] << ", "
+      << e[1] << ")";
+  return out.str();
+}
+
+std::string PointEdgePairs::FindCrossing(const double* x, double) const {
   if (!active_) return "";
-  std::vector<Pair> candidates;
-  Candidates(x, x, 0.0, &candidates);
-  for (const Pair& p : candidates) {
-    const double d = Distance(x, p);
-    if (!(d > c_.margin)) {
-      const auto& e = c_.mesh->edges[p.edge];
-      std::ostringstream out;
-      out << "boundary node " << c_.mesh->nodes[p.slot] << " touches boundary edge (" << e[0]
-          << ", " << e[1] << ") (distance " << d << ")";
-      return out.str();
-    }
-  }
-  // Edges crossing without a node on the other edge.
   const auto& edges = c_.mesh->edges;
   for (size_t e = 0; e < edges.size(); ++e) {
     const auto& ea = edges[e];
@@ -133,74 +132,29 @@ std::string PointEdgePairs::FindPenetration(const double* x, double) const {
   return "";
 }
 
-void PointEdgePairs::Near(const double* x, double, double reach, double* min_distance,
-                          int* count) const {
-  std::vector<Pair> candidates;
-  Candidates(x, x, reach, &candidates);
-  for (const Pair& p : candidates) {
-    const double d = Distance(x, p);
-    if (d < reach) {
-      *min_distance = std::min(*min_distance, d);
-      ++*count;
-    }
-  }
+void PointEdgePairs::SetGap(size_t k, Term* term) const {
+  const Pair& pair = pairs_[k];
+  const auto& e = c_.mesh->edges[pair.edge];
+  term->nodes = {c_.mesh->nodes[pair.slot], e[0], e[1]};
+  SetGapCost(std::make_unique<PointEdgeGap>(c_.d_hat, c_.margin), term);
 }
 
-void PointEdgePairs::AddBarrierGradient(const double* x, double, double scale,
-                                        Eigen::VectorXd* g) const {
-  std::vector<Pair> candidates;
-  Candidates(x, x, c_.d_hat, &candidates);
-  for (const Pair& p : candidates) {
-    const auto& e = c_.mesh->edges[p.edge];
-    const int node = c_.mesh->nodes[p.slot];
-    const PointEdgeDistanceResult r =
-        PointEdgeDistance(Node(x, node), Node(x, e[0]), Node(x, e[1]));
-    if (!(r.distance > 0.0 && r.distance < c_.d_hat)) continue;
-    const double w = scale * c_.mesh->weights[p.slot] * BarrierDerivative(r.distance, c_.d_hat);
-    g->segment<2>(2 * node) += w * r.grad_p;
-    g->segment<2>(2 * e[0]) += w * r.grad_a;
-    g->segment<2>(2 * e[1]) += w * r.grad_b;
-  }
+bool PointEdgePairs::LagPairFriction(const double*, double, const Pair& pair, const Measured& m,
+                                     PointEdgeFrictionLag* lag) const {
+  const Eigen::Vector2d tangent(-m.gradient[0][1], m.gradient[0][0]);
+  *lag = PointEdgeFrictionLag{m.nodes[0], m.nodes[1], m.nodes[2],
+                              tangent,    m.alpha,    NormalForce(pair, m.distance)};
+  return true;
 }
 
-void PointEdgePairs::AddBarrierTerms(IncrementalPotential* potential) const {
-  for (const Pair& pair : pairs_.pairs()) {
-    const auto& e = c_.mesh->edges[pair.edge];
-    Term term;
-    term.kind = TermKind::kPotential;
-    term.SetOwner(c_.barrier);
-    term.impulsive = true;
-    term.nodes = {c_.mesh->nodes[pair.slot], e[0], e[1]};
-    auto cost = std::make_unique<PointEdgeGap>(c_.d_hat, c_.margin);
-    term.curvature = GapCurvature(cost.get());
-    term.cost = std::move(cost);
-    term.loss = std::make_unique<BarrierLoss>(c_.d_hat, c_.mesh->weights[pair.slot], c_.kappa);
-    potential->AddTerm(std::move(term));
-  }
-}
-
-void PointEdgePairs::LagFriction(const double* x, double) {
-  lagged_.clear();
-  for (const Pair& pair : pairs_.pairs()) {
-    const auto& e = c_.mesh->edges[pair.edge];
-    const int node = c_.mesh->nodes[pair.slot];
-    const PointEdgeDistanceResult r =
-        PointEdgeDistance(Node(x, node), Node(x, e[0]), Node(x, e[1]));
-    if (!(r.distance > 0.0 && r.distance < c_.d_hat)) continue;
-    const double lambda =
-        -*c_.kappa * c_.mesh->weights[pair.slot] * BarrierDerivative(r.distance, c_.d_hat);
-    const Eigen::Vector2d tangent(-r.grad_p[1], r.grad_p[0]);
-    lagged_.push_back(LaggedFriction{node, e[0], e[1], tangent, r.alpha, lambda});
-  }
-}
-
-int PointEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
-                                     IncrementalPotential* potential) const {
+int PointEdgePairs::FrictionTerms(const std::vector<PointEdgeFrictionLag>& lags,
+                                  const FrictionSettings& friction,
+                                  IncrementalPotential* potential) const {
   const double eps_v = friction.epsilon_v;
   const double c = kFrictionSpeedScale * eps_v;
   const double mu = friction.ForSelf();
   if (!(mu > 0.0)) return 0;
-  for (const LaggedFriction& f : lagged_) {
+  for (const PointEdgeFrictionLag& f : lags) {
     for (int side : {1, -1}) {
       Term term;
       term.kind = TermKind::kDissipation;
@@ -213,7 +167,10 @@ int PointEdgePairs::AddFrictionTerms(const FrictionSettings& friction,
       potential->AddTerm(std::move(term));
     }
   }
-  return static_cast<int>(lagged_.size());
+  return static_cast<int>(lags.size());
 }
+
+// After ForEachCandidate, which the base's loops call.
+template class PairKind<PointEdgePairs, PointEdgePair, NoPairData, PointEdgeFrictionLag>;
 
 }  // namespace ipstep

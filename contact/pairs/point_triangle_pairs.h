@@ -23,16 +23,26 @@
 
 #include <Eigen/Core>
 
-#include "contact/pair_set.h"
+#include "contact/pair_kind.h"
 #include "contact/pairs/candidate_cache.h"
 #include "contact/pairs/self_contact_mesh.h"
 #include "contact/self_gap_terms.h"
-#include "contact/sorted_pairs.h"
 
 namespace ipstep {
 
-class PointTrianglePairs : public PairSet {
+struct PointTrianglePair {
+  int node;  // node id
+  int face;  // index into mesh->faces
+  bool operator<(const PointTrianglePair& o) const {
+    return node != o.node ? node < o.node : face < o.face;
+  }
+  bool operator==(const PointTrianglePair& o) const { return node == o.node && face == o.face; }
+};
+
+class PointTrianglePairs
+    : public PairKind<PointTrianglePairs, PointTrianglePair, NoPairData, SelfFrictionLag> {
  public:
+  using Pair = PointTrianglePair;
   // Registered only when the scene turns self-contact on
   // (contact/pair_kinds.cc).
   explicit PointTrianglePairs(const PairSetContext& context);
@@ -40,53 +50,47 @@ class PointTrianglePairs : public PairSet {
   const char* name() const override { return "point-triangle"; }
   bool active() const { return active_; }
 
-  void Clear() override { pairs_.Clear(); }
-  size_t size() const override { return pairs_.size(); }
-  bool ChangedSinceClear() const override { return pairs_.Changed(); }
-  bool Extend(const CandidateRegion& region) override;
-  bool Missing(const double* x) const override;
-
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
   double BroadPhaseSeconds() const override { return broad_phase_seconds_; }
-  std::string FindPenetration(const double* x, double t) const override;
-  void Near(const double* x, double t, double reach, double* min_distance,
-            int* count) const override;
-  void AddBarrierGradient(const double* x, double t, double scale,
-                          Eigen::VectorXd* g) const override;
-
-  void AddBarrierTerms(IncrementalPotential* potential) const override;
-  void LagFriction(const double* x, double t) override;
-  int AddFrictionTerms(const FrictionSettings& friction,
-                       IncrementalPotential* potential) const override;
-
-  struct Pair {
-    int node;  // node id
-    int face;  // index into mesh->faces
-    bool operator<(const Pair& o) const { return node != o.node ? node < o.node : face < o.face; }
-    bool operator==(const Pair& o) const { return node == o.node && face == o.face; }
-  };
-  const std::vector<Pair>& pairs() const { return pairs_.pairs(); }
-  // Distance of a pair at x (gradients over (p, a, b, c) and closest-point
-  // weights when not null).
-  double Distance(const double* x, const Pair& pair, Eigen::Vector3d* grad = nullptr,
-                  Eigen::Vector3d* weights = nullptr) const;
 
  private:
-  bool PairHasFreeNode(const Pair& pair) const;
+  using Base = PairKind<PointTrianglePairs, PointTrianglePair, NoPairData, SelfFrictionLag>;
+  friend Base;
+  // The distance with its gradients over (p, a, b, c) and the closest
+  // point's barycentric weights.
+  struct Measured : PairDistance<4> {
+    Eigen::Vector3d weights;
+  };
+
   // Calls f(pair) for every node-face combination (no common node) whose
   // boxes over a -> b overlap once the faces' are grown by `grow`.
   template <class F>
   void ForEachCandidate(const double* a, const double* b, double grow, const F& f) const;
+  bool HasFreeNode(const Pair& pair) const;
+  double Weight(const Pair& pair) const { return c_.mesh->weights[geometry_.slot(pair.node)]; }
+  double Distance(const double* x, double t, const Pair& pair) const;
+  Measured Measure(const double* x, double t, const Pair& pair) const;
+  bool Admits(const CandidateRegion& region, const Pair& pair, NoPairData* data) const;
+  std::string Describe(const Pair& pair) const;
+  // Faces without a common node that intersect.
+  std::string FindCrossing(const double* x, double t) const;
+  void SetGap(size_t k, Term* term) const;
+  bool LagPairFriction(const double* x, double t, const Pair& pair, const Measured& measured,
+                       SelfFrictionLag* lag) const;
+  int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
+                    IncrementalPotential* potential) const {
+    return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
+  }
 
-  PairSetContext context_;
   SelfContactMesh geometry_;
   bool active_ = false;
-  SortedPairs<Pair> pairs_;
-  std::vector<SelfFrictionLag> friction_;
   mutable Bvh bvh_;
   mutable std::vector<int> ids_;
   mutable CandidateCache<Pair> candidates_;  // ForEachCandidate's broad-phase output
   mutable double broad_phase_seconds_ = 0.0;
 };
+
+// Instantiated once, in the .cc (where ForEachCandidate is defined).
+extern template class PairKind<PointTrianglePairs, PointTrianglePair, NoPairData, SelfFrictionLag>;
 
 }  // namespace ipstep
