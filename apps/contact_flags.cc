@@ -4,43 +4,37 @@
 #include <string>
 
 #include "apps/command_line.h"
+#include "apps/option_flags.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "problems/scene.h"
 
-DEFINE_double(contact_kappa, 0.0,
-              "Fixed barrier stiffness kappa for scenes with contact, in (0, 1e20]; default: the "
-              "scene's (adaptive when the scene gives none)");
-DEFINE_double(contact_dhat, 0.0,
-              "Barrier activation distance d_hat [m] for scenes with contact, in [1e-9, 1e6]; "
-              "default: the scene's");
-DEFINE_double(friction_mu, 0.0,
-              "Friction coefficient for scenes with friction, in [0, 100]; default: the scene's");
-DEFINE_int32(friction_iterations, 0,
-             "Friction lag iterations per step for scenes with friction, in [1, 100]; default: "
-             "the scene's (1 when the scene gives none)");
+// Help text, default and range of each flag: its option row (apps/option_flags.h).
+DEFINE_double(contact_kappa, ipstep::FlagDefault<double>("contact_kappa"),
+              ipstep::FlagHelp("contact_kappa"));
+DEFINE_double(contact_dhat, ipstep::FlagDefault<double>("contact_dhat"),
+              ipstep::FlagHelp("contact_dhat"));
+DEFINE_double(friction_mu, ipstep::FlagDefault<double>("friction_mu"),
+              ipstep::FlagHelp("friction_mu"));
+DEFINE_int32(friction_iterations, ipstep::FlagDefault<int>("friction_iterations"),
+             ipstep::FlagHelp("friction_iterations"));
 
 namespace ipstep {
 // Each flag is used only when given; an explicit 0 is out of range, not "unset".
 void AddContactFlagOverrides(std::map<std::string, nlohmann::json>* overrides) {
-  if (!FlagIsDefault("contact_kappa")) {
-    (*overrides)["contact"]["kappa"] =
-        CheckFlagRange("contact_kappa", FLAGS_contact_kappa, 0.0, limits::kMaxKappa, "",
-                       "the scene's kappa", /*min_open=*/true);
+  const auto given = [](const char* flag) { return !FlagIsDefault(flag); };
+  if (given("contact_kappa")) {
+    (*overrides)["contact"]["kappa"] = FlagInRowRange("contact_kappa", FLAGS_contact_kappa);
   }
-  if (!FlagIsDefault("contact_dhat")) {
-    (*overrides)["contact"]["dhat"] =
-        CheckFlagRange("contact_dhat", FLAGS_contact_dhat, limits::kMinDhat, limits::kMaxDhat, "m",
-                       "the scene's dhat");
+  if (given("contact_dhat")) {
+    (*overrides)["contact"]["dhat"] = FlagInRowRange("contact_dhat", FLAGS_contact_dhat);
   }
-  if (!FlagIsDefault("friction_mu")) {
-    (*overrides)["friction"]["mu"] = CheckFlagRange("friction_mu", FLAGS_friction_mu, 0.0,
-                                                    limits::kMaxFrictionMu, "", "the scene's mu");
+  if (given("friction_mu")) {
+    (*overrides)["friction"]["mu"] = FlagInRowRange("friction_mu", FLAGS_friction_mu);
   }
-  if (!FlagIsDefault("friction_iterations")) {
+  if (given("friction_iterations")) {
     (*overrides)["friction"]["iterations"] =
-        CheckFlagRange("friction_iterations", FLAGS_friction_iterations, 1,
-                       limits::kMaxFrictionIterations, "the scene's iterations");
+        FlagInRowRange("friction_iterations", FLAGS_friction_iterations);
   }
 }
 

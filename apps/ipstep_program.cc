@@ -18,6 +18,7 @@
 
 #include "apps/command_line.h"
 #include "apps/contact_flags.h"
+#include "apps/option_flags.h"
 #include "apps/program_main.h"
 #include "apps/programs.h"
 #include "apps/run_signals.h"
@@ -39,9 +40,9 @@
 DEFINE_string(on_failure, "stop",
               "When a step fails (not converged, energy growth, penetration, non-finite) even "
               "after its substeps: stop (exit code 3) or continue");
-DEFINE_int32(max_substeps, ipstep::kProgramMaxSubsteps,
-             "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
-             "1: no retry");
+// Help text of the flags that set a library option (and, where the program's
+// default is the library's, the default): its option row (apps/option_flags.h).
+DEFINE_int32(max_substeps, ipstep::kProgramMaxSubsteps, ipstep::ProgramFlagHelp("max_substeps"));
 DEFINE_string(stats, "", "CSV file: one row per step");
 DEFINE_string(iterations_log, "", "CSV file: one row per optimizer iteration");
 DEFINE_string(positions, "", "CSV file: final node positions (node,x,y[,z])");
@@ -65,11 +66,9 @@ DEFINE_bool(adaptive, false,
             "Error-controlled time steps to the end time (--t_end, default the scene's "
             "time_step x steps): each step's local error estimate within --error_tolerance x "
             "h / t_end, rejected steps retried smaller; --dt is the first step");
-DEFINE_double(error_tolerance, 1e-3,
-              "With --adaptive: the position error [m] to reach at the end time, > 0");
-DEFINE_double(min_dt, 0.0,
-              "With --adaptive: the smallest step [s]; default max(1e-12, 1e-9 t_end)");
-DEFINE_double(max_dt, 0.0, "With --adaptive: the largest step [s]; default t_end / 10");
+DEFINE_double(error_tolerance, 1e-3, ipstep::ProgramFlagHelp("error_tolerance"));
+DEFINE_double(min_dt, ipstep::FlagDefault<double>("min_dt"), ipstep::FlagHelp("min_dt"));
+DEFINE_double(max_dt, ipstep::FlagDefault<double>("max_dt"), ipstep::FlagHelp("max_dt"));
 
 namespace ipstep {
 namespace {

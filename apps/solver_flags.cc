@@ -5,6 +5,7 @@
 
 #include "apps/command_line.h"
 #include "apps/contact_flags.h"
+#include "apps/option_flags.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "sim/default_effects.h"
@@ -12,98 +13,51 @@
 
 DEFINE_string(scene, "oscillator",
               "Built-in scene name (listed in --help) or path to a JSON scene file");
-DEFINE_string(integrator, "backward_euler",
-              "backward_euler | newmark | quasi_static | symplectic_euler");
-DEFINE_string(optimizer, "newton",
-              "newton | dogleg | gauss_newton | lbfgs | bfgs | ncg | gradient_descent | "
-              "projected_newton (not Ceres)");
-DEFINE_double(dt, 0.0, "Time step [s], in [1e-12, 1e3]; default: the scene's time_step");
-DEFINE_int32(steps, -1, "Number of steps, in [0, 10000000]; default: the scene's steps");
-DEFINE_double(t_end, 0.0,
-              "End time [s], > 0: run t_end / dt steps (a whole number, or an error names a dt "
-              "that fits); not with --steps; default: the scene's steps");
-DEFINE_double(tolerance, 1e-5,
-              "Stopping rule: h * max_i |f_i| / m_i [m/s], f = force imbalance of the step");
-DEFINE_int32(max_iterations, 0,
-             "Optimizer iteration limit per step, in [1, 1000000]; default: "
-             "newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, ncg 20000, "
-             "gradient_descent 50000");
-DEFINE_double(time_limit, 0.0, "Wall-time limit per step [s], in (0, 1e9]; default: none");
-DEFINE_int32(num_threads, 0,
-             "Threads for the terms' energies, gradients and Newton models (every optimizer; "
-             "the same iterates for any count) and Ceres's own evaluation (gauss_newton), in "
-             "[1, 256]; default: the machine's hardware threads");
-DEFINE_string(linear_solver, "",
-              "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY; "
-              "e.g. CGNR); projected_newton: SPARSE_CHOLESKY (default) | CG (conjugate gradients "
-              "with incomplete Cholesky, inexact Newton)");
-DEFINE_string(sparse_library, "",
-              "Sparse Cholesky library: newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | "
-              "EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD) | EIGEN_SPARSE "
-              "(SimplicialLDLT); default SUITE_SPARSE");
-DEFINE_string(linear_solver_ordering, "",
-              "newton/dogleg/gauss_newton/projected_newton: fill-reducing ordering of the sparse "
-              "Cholesky, AMD | NESDIS (nested dissection, METIS); default: NESDIS for 3D solids "
-              "of 20000 free DOFs or more, AMD otherwise");
-DEFINE_double(trust_region_radius, 0.0,
-              "newton/dogleg/gauss_newton: initial trust-region radius, in [1e-12, 1e20]; "
-              "default: newton and gauss_newton 1e16, dogleg 1e4");
-DEFINE_bool(backtrack_rejected_steps, true,
-            "newton/dogleg/gauss_newton: when Ceres rejects a trial step (refused by contact, or "
-            "the energy "
-            "rose), backtrack along it and restart Ceres from there (false: Ceres only shrinks "
-            "its trust region)");
-DEFINE_string(line_search, "", "line-search optimizers: WOLFE | ARMIJO (default WOLFE)");
-DEFINE_string(nonlinear_cg, "",
-              "ncg: FLETCHER_REEVES | POLAK_RIBIERE | HESTENES_STIEFEL (default FLETCHER_REEVES)");
-DEFINE_int32(lbfgs_rank, 0, "lbfgs: number of correction pairs, in [1, 1000]; default: 20");
-DEFINE_bool(mass_scaled_coordinates, true,
-            "line-search optimizers: work in z = sqrt(m) x / h (kinetic-energy metric)");
-DEFINE_bool(precise_energy, true,
-            "line-search optimizers: sum energies in extended precision (resolves smaller "
-            "force imbalances; costs one extra energy pass per evaluation)");
-DEFINE_string(hessian_projection, "default",
-              "newton/dogleg/projected_newton: how each iteration's model is made positive "
-              "definite: default (projected_newton: when_indefinite; newton, dogleg: always) | "
-              "always (every term's Hessian, negative eigenvalues clamped) | abs "
-              "(every term's, negative eigenvalues by their magnitude) | trust_region (clamp or "
-              "abs per iteration from the last step's model fit); projected_newton also: "
-              "when_indefinite (the exact Hessian when the assembled sum is positive definite) | "
-              "progressive (only terms at nodes whose force imbalance is above the tolerance); "
-              "newton/dogleg also: inertia (the exact Hessian where the nodes' inertia carries "
-              "the terms' negative curvature, clamped elsewhere)");
-DEFINE_double(newmark_beta, 0.25, "Newmark beta, in [1e-3, 1] (integrators/newmark.h)");
-DEFINE_double(newmark_gamma, 0.5, "Newmark gamma, in [0.5, 1] (integrators/newmark.h)");
-DEFINE_double(energy_tolerance, 0.1,
-              "A step whose energy grows by more than this fraction of the energy in motion "
-              "fails with status 'energy growth' (variational integrators), in [0, 100]; 0: no "
-              "check");
-DEFINE_int32(grid_size, 0,
-             "Override the node count per side of a scene's grid, in [2, 1000]; default: the "
-             "scene's");
+// Help text, default and range of each flag: its option row (apps/option_flags.h).
+DEFINE_string(integrator, ipstep::FlagDefault<const char*>("integrator"),
+              ipstep::FlagHelp("integrator"));
+DEFINE_string(optimizer, ipstep::FlagDefault<const char*>("optimizer"),
+              ipstep::FlagHelp("optimizer"));
+DEFINE_double(dt, ipstep::FlagDefault<double>("dt"), ipstep::FlagHelp("dt"));
+DEFINE_int32(steps, ipstep::FlagDefault<int>("steps"), ipstep::FlagHelp("steps"));
+DEFINE_double(t_end, ipstep::FlagDefault<double>("t_end"), ipstep::FlagHelp("t_end"));
+DEFINE_double(tolerance, ipstep::FlagDefault<double>("tolerance"), ipstep::FlagHelp("tolerance"));
+DEFINE_int32(max_iterations, ipstep::FlagDefault<int>("max_iterations"),
+             ipstep::FlagHelp("max_iterations"));
+DEFINE_double(time_limit, ipstep::FlagDefault<double>("time_limit"),
+              ipstep::FlagHelp("time_limit"));
+DEFINE_int32(num_threads, ipstep::FlagDefault<int>("num_threads"), ipstep::FlagHelp("num_threads"));
+DEFINE_string(linear_solver, ipstep::FlagDefault<const char*>("linear_solver"),
+              ipstep::FlagHelp("linear_solver"));
+DEFINE_string(sparse_library, ipstep::FlagDefault<const char*>("sparse_library"),
+              ipstep::FlagHelp("sparse_library"));
+DEFINE_string(linear_solver_ordering, ipstep::FlagDefault<const char*>("linear_solver_ordering"),
+              ipstep::FlagHelp("linear_solver_ordering"));
+DEFINE_double(trust_region_radius, ipstep::FlagDefault<double>("trust_region_radius"),
+              ipstep::FlagHelp("trust_region_radius"));
+DEFINE_bool(backtrack_rejected_steps, ipstep::FlagDefault<bool>("backtrack_rejected_steps"),
+            ipstep::FlagHelp("backtrack_rejected_steps"));
+DEFINE_string(line_search, ipstep::FlagDefault<const char*>("line_search"),
+              ipstep::FlagHelp("line_search"));
+DEFINE_string(nonlinear_cg, ipstep::FlagDefault<const char*>("nonlinear_cg"),
+              ipstep::FlagHelp("nonlinear_cg"));
+DEFINE_int32(lbfgs_rank, ipstep::FlagDefault<int>("lbfgs_rank"), ipstep::FlagHelp("lbfgs_rank"));
+DEFINE_bool(mass_scaled_coordinates, ipstep::FlagDefault<bool>("mass_scaled_coordinates"),
+            ipstep::FlagHelp("mass_scaled_coordinates"));
+DEFINE_bool(precise_energy, ipstep::FlagDefault<bool>("precise_energy"),
+            ipstep::FlagHelp("precise_energy"));
+DEFINE_string(hessian_projection, ipstep::FlagDefault<const char*>("hessian_projection"),
+              ipstep::FlagHelp("hessian_projection"));
+DEFINE_double(newmark_beta, ipstep::FlagDefault<double>("newmark_beta"),
+              ipstep::FlagHelp("newmark_beta"));
+DEFINE_double(newmark_gamma, ipstep::FlagDefault<double>("newmark_gamma"),
+              ipstep::FlagHelp("newmark_gamma"));
+DEFINE_double(energy_tolerance, ipstep::FlagDefault<double>("energy_tolerance"),
+              ipstep::FlagHelp("energy_tolerance"));
+DEFINE_int32(grid_size, ipstep::FlagDefault<int>("grid_size"), ipstep::FlagHelp("grid_size"));
 
 namespace ipstep {
 namespace {
-
-// The row of OptimizerOptions' table named `name` (solver/optimizer_option_table.h).
-const OptionRow<OptimizerOptions>& OptimizerRow(const char* name) {
-  const OptionRow<OptimizerOptions>* row = FindOption(OptimizerOptionTable(), name);
-  if (row == nullptr) throw std::logic_error(std::string("no option row ") + name);
-  return *row;
-}
-
-// A given flag whose unset value is a sentinel of the options, checked
-// against its row's range (and told what omitting it means).
-double FlagInRange(const char* name, double value) {
-  const OptionRow<OptimizerOptions>& row = OptimizerRow(name);
-  return CheckFlagRange(row.flag.c_str(), value, row.min, row.max, row.unit, row.default_meaning,
-                        row.min_open);
-}
-int FlagInRange(const char* name, int value) {
-  const OptionRow<OptimizerOptions>& row = OptimizerRow(name);
-  return CheckFlagRange(row.flag.c_str(), value, static_cast<int>(row.min),
-                        static_cast<int>(row.max), row.default_meaning);
-}
 
 // A given flag that its row says does not apply to the optimiser is an error
 // (the rows' order: the trust-region flags, the line-search flags, then
@@ -151,32 +105,31 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
   // --dt=0 is an error, not the scene's time step.
   // Ranges and what omitting the flag means: the option table's rows.
   if (!FlagIsDefault("max_iterations")) {
-    p.max_iterations = FlagInRange("max_iterations", FLAGS_max_iterations);
+    p.max_iterations = FlagInRowRange("max_iterations", FLAGS_max_iterations);
   }
-  if (!FlagIsDefault("time_limit")) p.time_limit = FlagInRange("time_limit", FLAGS_time_limit);
-  if (!FlagIsDefault("num_threads")) p.num_threads = FlagInRange("num_threads", FLAGS_num_threads);
+  if (!FlagIsDefault("time_limit")) p.time_limit = FlagInRowRange("time_limit", FLAGS_time_limit);
+  if (!FlagIsDefault("num_threads")) {
+    p.num_threads = FlagInRowRange("num_threads", FLAGS_num_threads);
+  }
   if (!FlagIsDefault("trust_region_radius")) {
     p.initial_trust_region_radius =
-        FlagInRange("initial_trust_region_radius", FLAGS_trust_region_radius);
+        FlagInRowRange("trust_region_radius", FLAGS_trust_region_radius);
   }
-  if (!FlagIsDefault("lbfgs_rank")) p.lbfgs_rank = FlagInRange("lbfgs_rank", FLAGS_lbfgs_rank);
+  if (!FlagIsDefault("lbfgs_rank")) p.lbfgs_rank = FlagInRowRange("lbfgs_rank", FLAGS_lbfgs_rank);
   ValidateOptimizerOptions(p);
   if (!FlagIsDefault("dt")) {
-    o.time_step = CheckFlagRange("dt", FLAGS_dt, limits::kMinTimeStep, limits::kMaxTimeStep, "s",
-                                 "the scene's time_step");
+    o.time_step = FlagInRowRange("dt", FLAGS_dt);
   }
   if (!FlagIsDefault("steps")) {
-    o.steps = CheckFlagRange("steps", FLAGS_steps, 0, limits::kMaxSteps, "the scene's steps");
+    o.steps = FlagInRowRange("steps", FLAGS_steps);
   }
   if (!FlagIsDefault("t_end")) {
     if (!FlagIsDefault("steps")) {
       throw InputError("flag", "--t_end", "give --steps or --t_end, not both");
     }
-    o.t_end = CheckFlagRange("t_end", FLAGS_t_end, 0.0, limits::kMaxSteps * limits::kMaxTimeStep,
-                             "s", "the scene's steps", /*min_open=*/true);
+    o.t_end = FlagInRowRange("t_end", FLAGS_t_end);
   }
-  o.energy_tolerance = CheckFlagRange("energy_tolerance", FLAGS_energy_tolerance, 0.0, 100.0, "",
-                                      "the tolerance 0.1; 0 is no check");
+  o.energy_tolerance = FlagInRowRange("energy_tolerance", FLAGS_energy_tolerance);
   AddContactFlagOverrides(&o.effect_overrides);
   return o;
 }
@@ -184,8 +137,7 @@ SimulationOptions SimulationOptionsFromFlags(const EffectRegistry& registry) {
 SceneLoadOptions SceneLoadOptionsFromFlags(const EffectRegistry& registry) {
   SceneLoadOptions o;
   if (!FlagIsDefault("grid_size")) {
-    o.grid_size =
-        CheckFlagRange("grid_size", FLAGS_grid_size, 2, limits::kMaxGridSize, "the scene's size");
+    o.grid_size = FlagInRowRange("grid_size", FLAGS_grid_size);
   }
   o.extra_effects = registry.UserNames();
   return o;

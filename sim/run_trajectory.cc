@@ -10,6 +10,7 @@
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "sim/divergence.h"
+#include "sim/simulation_option_table.h"
 #include "sim/step_size_controller.h"
 
 namespace ipstep {
@@ -267,10 +268,7 @@ void ValidateRunOptions(const Simulation& sim, const RunOptions& options) {
                          std::to_string(limits::kMaxSteps) + "], got " +
                          std::to_string(options.steps));
   }
-  if (!(options.max_wall_seconds >= 0.0 && options.max_wall_seconds <= limits::kMaxTimeLimit)) {
-    throw InputError("options", "RunOptions.max_wall_seconds",
-                     "must be in " + limits::RangeText(0.0, limits::kMaxTimeLimit, "s"));
-  }
+  CheckOptionRanges(RunOptionTable(), options);  // max_wall_seconds
   if (!options.adaptive) return;
   ValidateAdaptiveOptions(options.adaptive_options);
   if (options.steps != -1) {

@@ -32,16 +32,12 @@ Row Override(const char* name, const char* effect, const char* key, OptionType t
   return row;
 }
 
-OptionTable<SimulationOptions> Build() {
-  OptionTable<SimulationOptions> t =
-      LiftOptions(IntegratorOptionTable(), &SimulationOptions::integrator);
-  const OptionTable<SimulationOptions> optimizer =
-      LiftOptions(OptimizerOptionTable(), &SimulationOptions::optimizer);
-  t.insert(t.end(), optimizer.begin(), optimizer.end());
-
+// The rows of SimulationOptions' own fields.
+OptionTable<SimulationOptions> BuildOwn() {
+  OptionTable<SimulationOptions> t;
   Row time_step =
-      WithRange(Own("time_step", "dt", OptionType::kDouble, 0.0, "Time step [s]"),
-                limits::kMinTimeStep, limits::kMaxTimeStep, "s", "the scene's time_step");
+      WithRange(Own("time_step", "dt", OptionType::kDouble, 0.0, "Time step"), limits::kMinTimeStep,
+                limits::kMaxTimeStep, "s", "the scene's time_step");
   BindField(&SimulationOptions::time_step, &time_step);
   t.push_back(time_step);
   Row steps = WithRange(Own("steps", "steps", OptionType::kInt, -1LL, "Number of steps"), 0,
@@ -49,38 +45,57 @@ OptionTable<SimulationOptions> Build() {
   BindField(&SimulationOptions::steps, &steps);
   t.push_back(steps);
   Row t_end = WithRange(Own("t_end", "t_end", OptionType::kDouble, 0.0,
-                            "End time [s]: t_end / time_step steps (a whole number); not with "
-                            "steps"),
+                            "End time, not with steps: t_end / dt steps (a whole number, or an "
+                            "error names a dt that fits)"),
                         0.0, limits::kMaxSteps * limits::kMaxTimeStep, "s", "the scene's steps",
                         /*min_open=*/true);
   BindField(&SimulationOptions::t_end, &t_end);
   t.push_back(t_end);
   Row energy = WithRange(Own("energy_tolerance", "energy_tolerance", OptionType::kDouble, 0.1,
                              "A step whose energy grows by more than this fraction of the energy "
-                             "in motion fails with status 'energy growth'; 0: no check"),
+                             "in motion fails with status 'energy growth' (variational "
+                             "integrators; 0: no check)"),
                          0.0, 100.0, "");
   BindField(&SimulationOptions::energy_tolerance, &energy);
   t.push_back(energy);
   Row substeps = WithRange(
       Own("max_substeps", "max_substeps", OptionType::kInt,
           static_cast<long long>(SimulationOptions().max_substeps),
-          "A failed step is retried from its start as 2, 4, ... substeps, up to this many; "
-          "1: no retry"),
+          "A failed step is retried from its start as 2, 4, ... substeps, up to this many (1: "
+          "no retry)"),
       1, limits::kMaxSubsteps, "");
   BindField(&SimulationOptions::max_substeps, &substeps);
   t.push_back(substeps);
-  t.push_back(Override("contact_kappa", "contact", "kappa", OptionType::kDouble, 0.0,
-                       limits::kMaxKappa, "", true,
-                       "Fixed barrier stiffness kappa (scenes with contact)"));
+  return t;
+}
+
+const OptionTable<SimulationOptions>& OwnRows() {
+  static const OptionTable<SimulationOptions> table = BuildOwn();
+  return table;
+}
+
+OptionTable<SimulationOptions> Build() {
+  OptionTable<SimulationOptions> t =
+      LiftOptions(IntegratorOptionTable(), &SimulationOptions::integrator);
+  const OptionTable<SimulationOptions> optimizer =
+      LiftOptions(OptimizerOptionTable(), &SimulationOptions::optimizer);
+  t.insert(t.end(), optimizer.begin(), optimizer.end());
+  t.insert(t.end(), OwnRows().begin(), OwnRows().end());
+  t.push_back(Override(
+      "contact_kappa", "contact", "kappa", OptionType::kDouble, 0.0, limits::kMaxKappa, "", true,
+      "Fixed barrier stiffness kappa for scenes with contact (adaptive when neither the "
+      "scene nor this option gives one)"));
   t.push_back(Override("contact_dhat", "contact", "dhat", OptionType::kDouble, limits::kMinDhat,
                        limits::kMaxDhat, "m", false,
-                       "Barrier activation distance d_hat [m] (scenes with contact)"));
+                       "Barrier activation distance d_hat for scenes with contact"));
   t.push_back(Override("friction_mu", "friction", "mu", OptionType::kDouble, 0.0,
                        limits::kMaxFrictionMu, "", false,
-                       "Friction coefficient (scenes with friction)"));
-  t.push_back(Override("friction_iterations", "friction", "iterations", OptionType::kInt, 1,
-                       limits::kMaxFrictionIterations, "", false,
-                       "Friction lag iterations per step (scenes with friction)"));
+                       "Friction coefficient for scenes with friction"));
+  t.push_back(
+      Override("friction_iterations", "friction", "iterations", OptionType::kInt, 1,
+               limits::kMaxFrictionIterations, "", false,
+               "Friction lag iterations per step for scenes with friction (a scene's default is "
+               "1)"));
   return t;
 }
 
@@ -89,6 +104,10 @@ OptionTable<SimulationOptions> Build() {
 const OptionTable<SimulationOptions>& SimulationOptionTable() {
   static const OptionTable<SimulationOptions> table = Build();
   return table;
+}
+
+void CheckSimulationOptionRanges(const SimulationOptions& options) {
+  CheckOptionRanges(OwnRows(), options);
 }
 
 const OptionTable<RunOptions>& RunOptionTable() {
@@ -126,17 +145,17 @@ const OptionTable<AdaptiveOptions>& AdaptiveOptionTable() {
     };
     OptionTable<AdaptiveOptions> t;
     Row tolerance = WithRange(own("error_tolerance", "error_tolerance", 0.0,
-                                  "The position error [m] to reach at the end time"),
+                                  "Adaptive runs: the position error to reach at the end time"),
                               0.0, 1e6, "m", "none: an adaptive run must give it",
                               /*min_open=*/true);
     BindField(&AdaptiveOptions::error_tolerance, &tolerance);
     t.push_back(tolerance);
     Row min_h =
-        WithRange(own("min_time_step", "min_dt", 0.0, "The smallest step [s]"),
+        WithRange(own("min_time_step", "min_dt", 0.0, "Adaptive runs: the smallest step"),
                   limits::kMinTimeStep, limits::kMaxTimeStep, "s", "max(1e-12, 1e-9 t_end)");
     BindField(&AdaptiveOptions::min_time_step, &min_h);
     t.push_back(min_h);
-    Row max_h = WithRange(own("max_time_step", "max_dt", 0.0, "The largest step [s]"),
+    Row max_h = WithRange(own("max_time_step", "max_dt", 0.0, "Adaptive runs: the largest step"),
                           limits::kMinTimeStep, limits::kMaxTimeStep, "s", "t_end / 10");
     BindField(&AdaptiveOptions::max_time_step, &max_h);
     t.push_back(max_h);

@@ -23,6 +23,12 @@ const OptionTable<SimulationOptions>& SimulationOptionTable();
 const OptionTable<RunOptions>& RunOptionTable();
 const OptionTable<AdaptiveOptions>& AdaptiveOptionTable();
 
+// The library's range check of SimulationOptions' own fields (time_step,
+// steps, t_end, energy_tolerance, max_substeps) by their rows
+// (CheckOptionRanges); the integrator and optimiser options are checked where
+// they are made (MakeIntegrator, ValidateOptimizerOptions).
+void CheckSimulationOptionRanges(const SimulationOptions& options);
+
 // Throws InputError naming the field of the first option in `given` (names of
 // SimulationOptionTable()) that does not apply to `options` (an L-BFGS option
 // with optimizer=newton, a Newmark parameter with another integrator).

@@ -16,11 +16,13 @@
 #include "energies/inertia.h"
 #include "energies/term_builder.h"
 #include "sim/default_effects.h"
+#include "sim/simulation_option_table.h"
 
 namespace ipstep {
 
 Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
     : scene_(scene), options_(options) {
+  CheckSimulationOptionRanges(options);
   time_step_ = options.time_step > 0.0 ? options.time_step : scene.time_step;
   steps_ = options.steps >= 0 ? options.steps : scene.steps;
   if (!(time_step_ >= limits::kMinTimeStep && time_step_ <= limits::kMaxTimeStep)) {
@@ -34,10 +36,6 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
       throw InputError("options", "SimulationOptions.t_end",
                        "give the steps or the end time, not both");
     }
-    if (!(options.t_end > 0.0 && options.t_end <= limits::kMaxSteps * limits::kMaxTimeStep)) {
-      throw InputError("options", "SimulationOptions.t_end",
-                       "must be a time > 0 s, got " + limits::FormatLimit(options.t_end));
-    }
     const double steps = std::round(options.t_end / time_step_);
     if (!(steps >= 1.0) || std::abs(steps * time_step_ - options.t_end) > 1e-9 * options.t_end) {
       const double fit = options.t_end / std::max(1.0, std::ceil(options.t_end / time_step_));
@@ -49,11 +47,6 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
                            "); a step that fits: " + limits::FormatLimit(fit) + " s");
     }
     steps_ = static_cast<int>(std::min(steps, static_cast<double>(limits::kMaxSteps) + 1.0));
-  }
-  if (options.max_substeps < 1 || options.max_substeps > limits::kMaxSubsteps) {
-    throw InputError("options", "SimulationOptions.max_substeps",
-                     "must be in [1, " + std::to_string(limits::kMaxSubsteps) +
-                         "] (1: no retry), got " + std::to_string(options.max_substeps));
   }
   if (!(options.accept_residual >= 0.0 && std::isfinite(options.accept_residual))) {
     throw InputError(

@@ -6,6 +6,7 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "sim/simulation_option_table.h"
 
 namespace ipstep {
 namespace {
@@ -20,21 +21,24 @@ std::string NotPositive(double value, bool zero_allowed) {
 }  // namespace
 
 void ValidateAdaptiveOptions(const AdaptiveOptions& o) {
-  std::string why;
-  if (!(why = NotPositive(o.error_tolerance, false)).empty()) {
-    throw InputError("options", "AdaptiveOptions.error_tolerance", why);
+  // error_tolerance, min/max_time_step, safety, max_growth, max_shrink: their rows.
+  CheckOptionRanges(AdaptiveOptionTable(), o);
+  // The row's default 0 is no tolerance: an adaptive run must give one.
+  const OptionRow<AdaptiveOptions>& tolerance =
+      *FindOption(AdaptiveOptionTable(), "error_tolerance");
+  if (o.error_tolerance == 0.0) {
+    throw InputError(
+        "options", "AdaptiveOptions.error_tolerance",
+        "must be in " +
+            limits::RangeText(tolerance.min, tolerance.max, tolerance.unit, tolerance.min_open) +
+            ": an adaptive run must give it, got 0");
   }
+  std::string why;
   if (!(why = NotPositive(o.t_end, false)).empty()) {
     throw InputError("options", "AdaptiveOptions.t_end", why);
   }
   if (!(why = NotPositive(o.initial_time_step, true)).empty()) {
     throw InputError("options", "AdaptiveOptions.initial_time_step", why);
-  }
-  if (!(why = NotPositive(o.min_time_step, true)).empty()) {
-    throw InputError("options", "AdaptiveOptions.min_time_step", why);
-  }
-  if (!(why = NotPositive(o.max_time_step, true)).empty()) {
-    throw InputError("options", "AdaptiveOptions.max_time_step", why);
   }
   if (o.min_time_step > 0.0 && o.max_time_step > 0.0 && o.min_time_step > o.max_time_step) {
     throw InputError("options", "AdaptiveOptions.min_time_step",
@@ -42,14 +46,9 @@ void ValidateAdaptiveOptions(const AdaptiveOptions& o) {
                          " s must not exceed the largest, " + limits::FormatLimit(o.max_time_step) +
                          " s");
   }
-  if (!(o.safety > 0.0 && o.safety <= 1.0)) {
-    throw InputError("options", "AdaptiveOptions.safety", "must be in (0, 1]");
-  }
-  if (!(o.max_growth >= 1.0 && o.max_growth <= 10.0)) {
-    throw InputError("options", "AdaptiveOptions.max_growth", "must be in [1, 10]");
-  }
-  if (!(o.max_shrink > 0.0 && o.max_shrink < 1.0)) {
-    throw InputError("options", "AdaptiveOptions.max_shrink", "must be in (0, 1)");
+  // The row's range is (0, 1]; a rejection must shrink the step.
+  if (o.max_shrink == 1.0) {
+    throw InputError("options", "AdaptiveOptions.max_shrink", "must be < 1, got 1");
   }
 }
 

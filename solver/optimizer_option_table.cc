@@ -49,39 +49,43 @@ OptionTable<OptimizerOptions> Build() {
       Make("max_iterations", "max_iterations", OptionType::kInt, 0LL,
            "Optimizer iteration limit per step"),
       1, limits::kMaxIterations, "",
-      "the optimizer's default: newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, "
+      "the optimizer's: newton/dogleg/gauss_newton/projected_newton 100, lbfgs/bfgs 5000, "
       "ncg 20000, gradient_descent 50000");
   BindField(&OptimizerOptions::max_iterations, &max_iterations);
   t.push_back(max_iterations);
   Row time_limit = WithRange(
-      Make("time_limit", "time_limit", OptionType::kDouble, 0.0, "Wall-time limit per step [s]"),
-      0.0, limits::kMaxTimeLimit, "s", "no limit", /*min_open=*/true);
+      Make("time_limit", "time_limit", OptionType::kDouble, 0.0, "Wall-time limit per step"), 0.0,
+      limits::kMaxTimeLimit, "s", "no limit", /*min_open=*/true);
   BindField(&OptimizerOptions::time_limit, &time_limit);
   t.push_back(time_limit);
   Row threads = WithRange(
       Make("num_threads", "num_threads", OptionType::kInt, 0LL,
-           "Threads for the terms' energies, gradients and Newton models (the same iterates for "
-           "any count) and Ceres's own evaluation (gauss_newton)"),
+           "Threads for the terms' energies, gradients and Newton models (every optimizer; the "
+           "same iterates for any count) and Ceres's own evaluation (gauss_newton)"),
       1, limits::kMaxThreads, "", "the machine's hardware threads");
   BindField(&OptimizerOptions::num_threads, &threads);
   t.push_back(threads);
   Row linear_solver =
       Make("linear_solver", "linear_solver", OptionType::kString, std::string(),
-           "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY); "
-           "projected_newton: SPARSE_CHOLESKY (default) | CG");
+           "newton/dogleg/gauss_newton: Ceres linear solver (default SPARSE_NORMAL_CHOLESKY; "
+           "e.g. CGNR); projected_newton: SPARSE_CHOLESKY (default) | CG (conjugate gradients "
+           "with incomplete Cholesky, inexact Newton)");
   BindField(&OptimizerOptions::linear_solver, &linear_solver);
   linear_solver.applies = Family(OptimizerFamily::kTrustRegion, true);
   t.push_back(linear_solver);
-  Row sparse = Make("sparse_library", "sparse_library", OptionType::kString, std::string(),
-                    "Sparse Cholesky library: SUITE_SPARSE (default) | CX_SPARSE | EIGEN_SPARSE "
-                    "(projected_newton: SUITE_SPARSE | EIGEN_SPARSE)");
+  Row sparse =
+      Make("sparse_library", "sparse_library", OptionType::kString, std::string(),
+           "Sparse Cholesky library: newton/dogleg/gauss_newton: SUITE_SPARSE | CX_SPARSE | "
+           "EIGEN_SPARSE; projected_newton: SUITE_SPARSE (CHOLMOD) | EIGEN_SPARSE "
+           "(SimplicialLDLT); default SUITE_SPARSE");
   BindField(&OptimizerOptions::sparse_library, &sparse);
   sparse.applies = Family(OptimizerFamily::kTrustRegion, true);
   t.push_back(sparse);
   Row ordering =
       Make("linear_solver_ordering", "linear_solver_ordering", OptionType::kString, std::string(),
-           "Fill-reducing ordering of the sparse Cholesky: AMD | NESDIS; default: NESDIS for 3D "
-           "solids of 20000 free DOFs or more, AMD otherwise");
+           "newton/dogleg/gauss_newton/projected_newton: fill-reducing ordering of the sparse "
+           "Cholesky, AMD | NESDIS (nested dissection, METIS); default: NESDIS for 3D solids "
+           "of 20000 free DOFs or more, AMD otherwise");
   BindField(&OptimizerOptions::linear_solver_ordering, &ordering);
   ordering.applies = Family(OptimizerFamily::kTrustRegion, true);
   t.push_back(ordering);
@@ -95,8 +99,9 @@ OptionTable<OptimizerOptions> Build() {
   t.push_back(radius);
   Row backtrack =
       Make("backtrack_rejected_steps", "backtrack_rejected_steps", OptionType::kBool, true,
-           "newton/dogleg/gauss_newton: backtrack along a rejected trial step and "
-           "restart Ceres from there (false: Ceres only shrinks its trust region)");
+           "newton/dogleg/gauss_newton: when Ceres rejects a trial step (refused by contact, or "
+           "the energy rose), backtrack along it and restart Ceres from there (false: Ceres "
+           "only shrinks its trust region)");
   BindField(&OptimizerOptions::backtrack_rejected_steps, &backtrack);
   backtrack.applies = Family(OptimizerFamily::kTrustRegion);
   t.push_back(backtrack);
@@ -123,13 +128,21 @@ OptionTable<OptimizerOptions> Build() {
   scaled.applies = Family(OptimizerFamily::kLineSearch);
   t.push_back(scaled);
   Row precise = Make("precise_line_search_energy", "precise_energy", OptionType::kBool, true,
-                     "line-search optimizers: sum energies in extended precision");
+                     "line-search optimizers: sum energies in extended precision (resolves smaller "
+                     "force imbalances; costs one extra energy pass per evaluation)");
   BindField(&OptimizerOptions::precise_line_search_energy, &precise);
   t.push_back(precise);
   Row projection =
       Make("hessian_projection", "hessian_projection", OptionType::kString, std::string("default"),
-           "newton/dogleg/projected_newton: how each iteration's model is made positive definite: "
-           "default | always | abs | trust_region | when_indefinite | progressive | inertia");
+           "newton/dogleg/projected_newton: how each iteration's model is made positive "
+           "definite: default (projected_newton: when_indefinite; newton, dogleg: always) | "
+           "always (every term's Hessian, negative eigenvalues clamped) | abs "
+           "(every term's, negative eigenvalues by their magnitude) | trust_region (clamp or "
+           "abs per iteration from the last step's model fit); projected_newton also: "
+           "when_indefinite (the exact Hessian when the assembled sum is positive definite) | "
+           "progressive (only terms at nodes whose force imbalance is above the tolerance); "
+           "newton/dogleg also: inertia (the exact Hessian where the nodes' inertia carries "
+           "the terms' negative curvature, clamped elsewhere)");
   projection.set = [](const OptionValue& v, OptimizerOptions* o) {
     o->hessian_projection = ParseHessianProjection(std::get<std::string>(v));
   };

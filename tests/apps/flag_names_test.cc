@@ -77,6 +77,7 @@ std::set<std::string> ReportedOptionNames() {
   for (const auto& row : SimulationOptionTable()) names.insert("options: " + row.field);
   for (const auto& row : SceneLoadOptionTable()) names.insert("options: " + row.field);
   for (const auto& row : RunOptionTable()) names.insert("options: " + row.field);
+  for (const auto& row : AdaptiveOptionTable()) names.insert("options: " + row.field);
   return names;
 }
 

@@ -15,6 +15,7 @@
 #include "apps/programs.h"
 #include "apps/solver_flags.h"
 #include "core/input_error.h"
+#include "core/input_limits.h"
 #include "integrators/integrator_option_table.h"
 #include "problems/scene_load_option_table.h"
 #include "sim/simulation_option_table.h"
@@ -125,6 +126,42 @@ TEST(OptionTable, EveryFlagOfTheSharedFilesHasARow) {
     EXPECT_EQ(in_table.count(info.name), 1u) << "--" << info.name << " (" << file << ") has no row";
   }
   EXPECT_GE(shared, 28);
+}
+
+// The help text of a row's flag (what --help prints) is made from the row:
+// its doc, its range, and what the unset flag means (not where the program's
+// default differs: gflags prints that default), so neither can restate the
+// other.
+template <class Options>
+void ExpectHelpIsTheRows(const OptionTable<Options>& table, int* compared) {
+  for (const OptionRow<Options>& row : table) {
+    if (row.flag.empty()) continue;
+    gflags::CommandLineFlagInfo info;
+    ASSERT_TRUE(gflags::GetCommandLineFlagInfo(row.flag.c_str(), &info)) << row.flag;
+    const auto number = [&row](double x) {
+      return row.type == OptionType::kInt ? std::to_string(static_cast<long long>(x))
+                                          : limits::FormatLimit(x);
+    };
+    std::string expected = row.doc;
+    if (row.has_range) {
+      expected += std::string(", in ") + (row.min_open ? "(" : "[") + number(row.min) + ", " +
+                  number(row.max) + "]" + (row.unit.empty() ? "" : " " + row.unit);
+    }
+    if (!row.default_meaning.empty() && ProgramDefaults().count(row.flag) == 0) {
+      expected += "; default: " + row.default_meaning;
+    }
+    EXPECT_EQ(info.description, expected) << "--" << row.flag;
+    ++*compared;
+  }
+}
+
+TEST(OptionTable, EveryFlagsHelpIsItsRow) {
+  int compared = 0;
+  ExpectHelpIsTheRows(SimulationOptionTable(), &compared);
+  ExpectHelpIsTheRows(SceneLoadOptionTable(), &compared);
+  ExpectHelpIsTheRows(RunOptionTable(), &compared);
+  ExpectHelpIsTheRows(AdaptiveOptionTable(), &compared);
+  EXPECT_GE(compared, 32);
 }
 
 TEST(OptionTable, NamesAreUniqueAndEveryRowCanBeSet) {

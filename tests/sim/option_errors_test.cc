@@ -2,6 +2,7 @@
 // "options: <Struct>.<field>: ..." (docs/architecture.md "Using ipstep as a library"), never
 // a program's flag: a program using ipstep as a library has no flags (the
 // programs map the names to theirs, apps/flag_names.h).
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -12,7 +13,9 @@
 #include "integrators/integrator.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
+#include "sim/run_trajectory.h"
 #include "sim/simulation.h"
+#include "sim/step_size_controller.h"
 #include "solver/optimizer_options.h"
 #include "tests/support/test_scenes.h"
 
@@ -146,6 +149,52 @@ TEST(OptionErrors, MaxSubstepsIsCheckedByTheLibrary) {
     options.max_substeps = substeps;
     EXPECT_NO_THROW(Simulation(scene, options)) << substeps;
   }
+}
+
+// A struct's own options are checked by their rows' ranges
+// (CheckOptionRanges): a value outside the range is an error naming the field,
+// whether or not it is on the sentinel's side (a negative time step is not the
+// scene's time step, steps = -5 are not the scene's steps); only the sentinel
+// itself means the default.
+TEST(OptionErrors, OnlyTheSentinelStandsForTheDefault) {
+  const Scene scene = testing::OscillatorScene();
+  const struct {
+    std::function<void(SimulationOptions*)> change;
+    const char* option;
+  } cases[] = {
+      {[](SimulationOptions* o) { o->time_step = -0.01; }, "SimulationOptions.time_step"},
+      {[](SimulationOptions* o) { o->steps = -5; }, "SimulationOptions.steps"},
+      {[](SimulationOptions* o) { o->t_end = -1.0; }, "SimulationOptions.t_end"},
+      {[](SimulationOptions* o) { o->energy_tolerance = std::nan(""); },
+       "SimulationOptions.energy_tolerance"},
+      {[](SimulationOptions* o) { o->energy_tolerance = -0.1; },
+       "SimulationOptions.energy_tolerance"},
+  };
+  for (const auto& c : cases) {
+    SimulationOptions options;
+    c.change(&options);
+    ExpectOptionError([&] { Simulation sim(scene, options); }, c.option);
+  }
+  SimulationOptions defaults;
+  defaults.time_step = 0.0;
+  defaults.steps = -1;
+  defaults.t_end = 0.0;
+  EXPECT_NO_THROW(Simulation(scene, defaults));
+
+  Simulation sim(scene, SimulationOptions());
+  RunOptions run;
+  run.max_wall_seconds = -1.0;
+  ExpectOptionError([&] { RunTrajectory(sim, run); }, "RunOptions.max_wall_seconds");
+
+  AdaptiveOptions adaptive;
+  adaptive.error_tolerance = 1e-3;
+  adaptive.t_end = 1.0;
+  EXPECT_NO_THROW(ValidateAdaptiveOptions(adaptive));
+  adaptive.min_time_step = 1e-20;  // below the smallest time step
+  ExpectOptionError([&] { ValidateAdaptiveOptions(adaptive); }, "AdaptiveOptions.min_time_step");
+  adaptive.min_time_step = 0.0;
+  adaptive.error_tolerance = 0.0;  // the default: none, which an adaptive run must give
+  ExpectOptionError([&] { ValidateAdaptiveOptions(adaptive); }, "AdaptiveOptions.error_tolerance");
 }
 
 // Dense BFGS on 100 x 100 nodes in 3D (30,000 free degrees of freedom): the
