@@ -32,35 +32,6 @@ double Since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-double ParseNumber(const std::string& spec, const std::string& key, const std::string& value) {
-  double number = 0.0;
-  if (!ParseFiniteNumber(value, &number)) {
-    throw InputError("optimizer spec", spec, key + ": not a number: '" + ClipInput(value) + "'");
-  }
-  return number;
-}
-
-// A number in [min, max] (the range of the corresponding ipstep flag).
-double ParseNumberInRange(const std::string& spec, const std::string& key, const std::string& value,
-                          double min, double max) {
-  const double number = ParseNumber(spec, key, value);
-  if (!(number >= min && number <= max)) {
-    throw InputError("optimizer spec", spec,
-                     key + ": must be in " + limits::RangeText(min, max) + ", got " +
-                         limits::FormatLimit(number));
-  }
-  return number;
-}
-
-int ParseCount(const std::string& spec, const std::string& key, const std::string& value, int max) {
-  const double number = ParseNumber(spec, key, value);
-  if (number < 1 || number != std::floor(number) || number > max) {
-    throw InputError("optimizer spec", spec,
-                     key + ": must be an integer in [1, " + std::to_string(max) + "]");
-  }
-  return static_cast<int>(number);
-}
-
 std::string Quote(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
@@ -141,76 +112,6 @@ void WriteReference(const std::string& file, const std::string& key,
 }
 
 }  // namespace
-
-OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
-  OptimizerSpec spec;
-  spec.text = text;
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  for (std::string part; std::getline(stream, part, '+');) parts.push_back(part);
-  if (parts.empty() || parts[0].empty()) throw InputError("optimizer spec", text, "empty");
-  const std::string& name = parts[0];
-  spec.none = name == "none";
-  spec.options.tolerance = tolerance;
-  if (!spec.none) spec.options.optimizer = ParseOptimizer(name);
-  for (size_t p = 1; p < parts.size(); ++p) {
-    const size_t eq = parts[p].find('=');
-    if (eq == std::string::npos) {
-      throw InputError("optimizer spec", text, "'" + ClipInput(parts[p]) + "' is not key=value");
-    }
-    const std::string key = parts[p].substr(0, eq), value = parts[p].substr(eq + 1);
-    if (key == "max_iterations" && !spec.none) {
-      spec.options.max_iterations = ParseCount(text, key, value, limits::kMaxIterations);
-      continue;
-    }
-    if (spec.projected_newton() || spec.none) {
-      throw InputError("optimizer spec", text, "unknown key '" + ClipInput(key) + "' for " + name);
-    }
-    if (key == "sparse") {
-      spec.options.sparse_library = value;
-    } else if (key == "radius") {
-      spec.options.initial_trust_region_radius = ParseNumberInRange(
-          text, key, value, limits::kMinTrustRegionRadius, limits::kMaxTrustRegionRadius);
-    } else if (key == "backtrack") {
-      if (value != "true" && value != "false") {
-        throw InputError("optimizer spec", text, "backtrack must be true or false");
-      }
-      if (!IsTrustRegion(spec.options.optimizer)) {
-        throw InputError("optimizer spec", text,
-                         "backtrack applies to newton, dogleg and gauss_newton only");
-      }
-      spec.options.backtrack_rejected_steps = value == "true";
-    } else if (key == "linear_solver") {
-      spec.options.linear_solver = value;
-    } else if (key == "threads") {
-      spec.options.num_threads = ParseCount(text, key, value, limits::kMaxThreads);
-    } else if (key == "line_search") {
-      spec.options.line_search = value;
-    } else if (key == "rank") {
-      spec.options.lbfgs_rank = ParseCount(text, key, value, limits::kMaxLbfgsRank);
-    } else if (key == "type") {
-      spec.options.nonlinear_cg = value;
-    } else {
-      throw InputError("optimizer spec", text,
-                       "unknown key '" + ClipInput(key) +
-                           "' (sparse, radius, backtrack, linear_solver, threads, "
-                           "max_iterations, line_search, rank, type)");
-    }
-  }
-  // Validates the options now (a bad spec is an input error, not a run failure).
-  switch (spec.none ? OptimizerFamily::kEigenNewton : FamilyOf(spec.options.optimizer)) {
-    case OptimizerFamily::kTrustRegion:
-      MakeTrustRegionOptions(spec.options);
-      break;
-    case OptimizerFamily::kLineSearch:
-      MakeLineSearchOptions(spec.options);
-      break;
-    case OptimizerFamily::kEigenNewton:
-      ValidateOptimizerOptions(spec.options);
-      break;
-  }
-  return spec;
-}
 
 Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec) {
   Trajectory out;

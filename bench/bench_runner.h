@@ -1,5 +1,5 @@
-// Building blocks of ipstep_bench: optimiser specifications, one timed run of a
-// scene, reference solutions and the CSV row format. See docs/benchmarks.md.
+// Building blocks of ipstep_bench: one timed run of a scene (its optimiser:
+// bench/optimizer_spec.h), reference solutions and the CSV row format. See docs/benchmarks.md.
 #pragma once
 
 #include <map>
@@ -9,29 +9,13 @@
 
 #include <Eigen/Core>
 
+#include "bench/optimizer_spec.h"
 #include "sim/reference.h"
 #include "sim/simulation.h"
 #include "solver/projected_newton_solver.h"
 
 namespace ipstep {
 namespace bench {
-
-// An optimiser name (newton, dogleg, gauss_newton, lbfgs, ..., projected_newton,
-// the Eigen reference of solver/projected_newton_solver.h) followed by options,
-// or "none" (explicit integrators):
-//   newton+sparse=SUITE_SPARSE+radius=1e8   lbfgs+rank=5   ncg+type=POLAK_RIBIERE
-// Keys: sparse, radius, backtrack, linear_solver, threads, max_iterations,
-// line_search, rank, type (max_iterations only for projected_newton). Throws
-// InputError naming the spec.
-struct OptimizerSpec {
-  std::string text;
-  bool none = false;  // no optimiser (explicit integrator)
-  OptimizerOptions options;
-  bool projected_newton() const {
-    return !none && options.optimizer == Optimizer::kProjectedNewton;
-  }
-};
-OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance);
 
 struct RunConfig {
   int id = 0;  // position in the sweep (rows are merged back in this order)

@@ -14,6 +14,7 @@ if(TARGET ipstep_bench_lib)  # ipstep::bench (bench/bench_program.h: RunBench)
   install(TARGETS ipstep_bench_lib EXPORT ipstepTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(TARGETS ipstep_bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   install(FILES ${PROJECT_SOURCE_DIR}/bench/bench_program.h ${PROJECT_SOURCE_DIR}/bench/bench_runner.h
+                ${PROJECT_SOURCE_DIR}/bench/optimizer_spec.h
           DESTINATION include/ipstep/bench)
 endif()
 foreach(dir apps contact core energies geometry integrators mesh problems sim solver io)
