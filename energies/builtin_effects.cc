@@ -2,11 +2,13 @@
 // springs, damping.
 #include <array>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "energies/elasticity/elasticity_effect.h"
+#include "energies/gravity_effect.h"
 #include "energies/gravity_potential.h"
 #include "energies/hookean_spring.h"
 #include "energies/quartic_spring.h"
@@ -33,10 +35,23 @@ double GravityOffset(const State& state) {
   return 10.0 * extent;
 }
 
-std::string BuildGravity(TermBuilder& builder, const nlohmann::json&) {
+std::unique_ptr<Effect> BuildGravity(TermBuilder& builder, const nlohmann::json&) {
   const Scene& scene = builder.scene();
-  if (builder.has_inertia()) return "gravity: folded into the inertia predictor (no terms)";
   const State& state = builder.state();
+  if (static_cast<int>(scene.gravity.size()) != state.dimension) {
+    throw InputError(scene.source, "gravity",
+                     "must have " + std::to_string(state.dimension) +
+                         " components (the scene's dimension), has " +
+                         std::to_string(scene.gravity.size()));
+  }
+  const Eigen::VectorXd g =
+      Eigen::Map<const Eigen::VectorXd>(scene.gravity.data(), state.dimension);
+  // With inertia the acceleration goes into the step itself: the variational
+  // integrators' predictor, or symplectic Euler's explicit update.
+  if (builder.has_inertia()) {
+    return std::make_unique<GravityEffect>(
+        g, "gravity: a uniform acceleration in the predictor or explicit update (no terms)");
+  }
   const double offset = GravityOffset(state);
   int count = 0;
   for (int i = 0; i < state.num_nodes(); ++i) {
@@ -45,7 +60,8 @@ std::string BuildGravity(TermBuilder& builder, const nlohmann::json&) {
                                                 state.mass[i], scene.gravity.data(), offset);
     ++count;
   }
-  return "gravity: " + std::to_string(count) + " linear potential terms (quasi-static)";
+  return std::make_unique<GravityEffect>(
+      g, "gravity: " + std::to_string(count) + " linear potential terms (quasi-static)");
 }
 
 std::string BuildSprings(TermBuilder& builder, const nlohmann::json&) {
@@ -122,7 +138,9 @@ std::string BuildDamping(TermBuilder& builder, const nlohmann::json&) {
 }  // namespace
 
 void RegisterBuiltinEffects(EffectRegistry* registry) {
-  registry->Register("gravity", "uniform gravity (folded into the predictor)", BuildGravity);
+  registry->Register("gravity",
+                     "uniform gravity (an acceleration in the step; quasi-static: terms)",
+                     BuildGravity);
   registry->Register("springs", "spring networks: hookean, squared_strain, quartic", BuildSprings);
   registry->Register("damping", "Rayleigh dissipation, mass- and stiffness-proportional",
                      BuildDamping);

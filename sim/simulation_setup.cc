@@ -13,6 +13,7 @@
 #include "core/input_limits.h"
 #include "energies/effect_order.h"
 #include "energies/effect_registry.h"
+#include "energies/gravity_effect.h"
 #include "energies/inertia.h"
 #include "energies/term_builder.h"
 #include "sim/default_effects.h"
@@ -61,6 +62,9 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options)
   integrator_ = MakeIntegrator(options.integrator);
   BuildState();
   BuildPotential();
+  if (const GravityEffect* gravity = FindEffect<GravityEffect>()) {
+    gravity_ = gravity->acceleration();
+  }
   if (const VariationalIntegrator* variational = integrator_.variational.get()) {
     solver_ = MakeStepSolver(potential_.get(), &state_, options.optimizer);
     if (!variational->InitializeState(potential_.get(), gravity_, &state_)) {
@@ -89,10 +93,7 @@ void Simulation::BuildState() {
     state_.motion[m.node] = MotionOf(m, dim);
   }
   state_.PrescribedVelocities(0.0, &state_.v);
-  gravity_ = Eigen::VectorXd::Zero(dim);
-  if (scene_.HasEffect("gravity")) {
-    gravity_ = Eigen::Map<const Eigen::VectorXd>(scene_.gravity.data(), dim);
-  }
+  gravity_ = Eigen::VectorXd::Zero(dim);  // the gravity effect's, once built
 }
 
 void Simulation::BuildPotential() {
