@@ -7,7 +7,7 @@
 // Primitives: the declared edges plus the edges of the declared triangles
 // (each once, as (low, high) node ids, sorted), the triangles as declared
 // (faces, 3D), and the declared points.
-// Weights (the scale of a pair's barrier, contact/contact_filter.h):
+// Weights (the scale of a pair's barrier, contact/contact_state.h):
 //  * node: its share of the surface measure: a third of the rest area of its
 //    triangles plus half the rest length of its declared edges; a point
 //    without either has weight 1 (a particle);
@@ -39,7 +39,7 @@ struct CollisionMesh {
 };
 
 // Fills mesh->node_slots from mesh->nodes; call after changing `nodes`
-// (BuildCollisionMesh and the contact filter do).
+// (BuildCollisionMesh and the contact state's constructor do).
 void IndexNodeSlots(CollisionMesh* mesh);
 
 // Index of contact node `node` in mesh.nodes (mesh.node_slots).

@@ -1,4 +1,5 @@
-// Options of the contact filter (contact/contact_filter.h).
+// Options of the contact state (contact/contact_state.h): ContactOptions when it
+// is made, FrictionOptions for its EnableFriction.
 #pragma once
 
 #include <vector>

@@ -108,9 +108,10 @@ class ContactState {
   void StartRejected();
   // The secant starts at the third staged solve (two solutions give a secant).
   // Measured (ipstep --scene=squash_square --contact_kappa=1e5): from the 3rd
-  // stage 15.8 Newton iterations per step (max 30), from the 25th 89.7 (max
-  // 156), without the secant 192 (22 steps substepped); hard/squeeze_fast's
-  // step 7 takes 27 iterations instead of 90.
+  // stage 15.8 Newton iterations per step (max 30; 20.3, max 39, with today's
+  // code), from the 25th 89.7 (max 156), without the secant 192 (22 steps
+  // substepped); hard/squeeze_fast's step 7 takes 28 iterations instead of 90
+  // (docs/contact.md, "Moving boundaries").
   static constexpr int kSecantFromStage = 3;
   // What the contact terms took in over the step (StepFilter::PrescribedWork):
   // at BeginStep, the change of U_b(x_n, t_n) by the step's stiffness and

@@ -282,7 +282,7 @@ class Obstacle {
 };
 
 // Obstacles are immutable once built and shared (the contact options, the
-// contact filter and the frame writer hold the same ones).
+// contact state and the frame writer hold the same ones).
 using ObstaclePtr = std::shared_ptr<const Obstacle>;
 using ObstacleList = std::vector<ObstaclePtr>;
 

@@ -1,4 +1,4 @@
-// The registry of pair kinds the contact filter is made of
+// The registry of pair kinds the contact state is made of
 // (contact/pair_set.h), in the order their terms are built.
 #pragma once
 

@@ -1,6 +1,6 @@
 // One kind of contact pair (node-obstacle, edge-obstacle, face-obstacle,
 // 2D point-edge, 3D point-triangle, 3D edge-edge, ...): the unit the contact
-// filter (contact/contact_filter.h) is made of. A pair kind implements, once:
+// state (contact/contact_state.h) is made of. A pair kind implements, once:
 //  * candidates: which pairs of primitives of the collision mesh
 //    (contact/collision_mesh.h) and obstacles can come within d_hat
 //    (Extend, Missing), kept as the kind's active set (sorted, it only grows
@@ -39,8 +39,9 @@
 
 namespace ipstep {
 
-// What every pair set reads. Fixed for the filter's lifetime, except the
-// values behind the pointers, which the filter updates and the terms read at
+// What every pair set reads, filled by the contact state that makes the sets
+// (contact/contact_state.cc). Fixed for the state's lifetime, except the
+// values behind the pointers, which the state updates and the terms read at
 // every evaluation.
 struct PairSetContext {
   int dimension = 3;
@@ -58,7 +59,7 @@ struct PairSetContext {
   const double* kappa = nullptr;  // barrier stiffness
   const StepContext* step = nullptr;
   // The terms' owners: the barrier's ("contact") and friction's ("friction")
-  // families and the filter's term groups.
+  // families and the contact state's term groups.
   TermOwner barrier{"contact", 0};
   TermOwner friction{"friction", 0};
 };
@@ -114,9 +115,9 @@ class PairSet {
   // there; kNoImpact if none. With a == b and t_a == t_b: 0 when x is
   // infeasible, kNoImpact otherwise.
   virtual double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const = 0;
-  // After the filter's sweep (the smallest TimeOfImpact over all kinds, in
-  // [0, 1]): a fraction <= t that a check TimeOfImpact cannot express needs
-  // (default: t).
+  // After the sweep of the filter's MaxStepSize (ContactState::Sweep, the
+  // smallest TimeOfImpact over all kinds, clamped to [0, 1]): a fraction <= t
+  // that a check TimeOfImpact cannot express needs (default: t).
   virtual double ShrinkToClear(const double* from, const double* to, double t) const {
     (void)from;
     (void)to;
@@ -139,8 +140,8 @@ class PairSet {
   // One barrier term per active pair (owner context.barrier, kind
   // kPotential, impulsive), reading time and kappa through the context.
   virtual void AddBarrierTerms(IncrementalPotential* potential) const = 0;
-  // True if the terms read lagged data that BeginStep refills (the filter
-  // then rebuilds them every step).
+  // True if the terms read lagged data that BeginStep refills (the contact
+  // state then rebuilds them every step).
   virtual bool TermsReadLags() const { return false; }
   // Re-lags closest points at x; returns the largest relative excess
   // (d_lagged - d) / d of the previous lag over active pairs within d_hat.

@@ -40,7 +40,7 @@ class IncrementalPotential {
   // Checks node indices and parameter block sizes (throws std::invalid_argument).
   void AddTerm(Term term);
   // A new term group (Term::group, > 0) for an owner that removes its terms
-  // and adds them again (the contact filter: every step's pairs).
+  // and adds them again (the contact state: every step's pairs).
   int NewTermGroup() { return ++term_groups_; }
   // Removes every term of `group` (> 0); returns how many.
   int RemoveTerms(int group);

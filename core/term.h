@@ -56,7 +56,7 @@ double TermWeight(TermKind kind, const StepContext& context);
 
 // Who a term belongs to: its family names it in reports ("contact"); its group
 // (IncrementalPotential::NewTermGroup; 0: none) lets the owner that rebuilds
-// terms (the contact filter) remove and select exactly its own.
+// terms (the contact state) remove and select exactly its own.
 struct TermOwner {
   const char* family = "";
   int group = 0;

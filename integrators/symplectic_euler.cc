@@ -2,8 +2,14 @@
 
 namespace ipstep {
 
-// The potential is still built (forces come from the same energy terms); its
-// weights make R's gradient equal B v at x = x_n (see core/forces.h).
+// The potential is still built: the forces come from the same energy terms,
+// which ComputeForces (core/forces.h) evaluates unweighted with its own
+// velocity map, v(x) = v_n + 1 (x - x_n), so that R's gradient at x_n is B v_n;
+// these weights do not scale the forces. They matter where the potential is
+// built: w_I = 0 builds no inertia terms (Simulation::BuildPotential) and
+// sizes contact's adaptive barrier stiffness by m / h^2
+// (contact/adaptive_kappa.cc); with w_U = w_R = 1 the weighted terms are the
+// unweighted ones, and the slope 1 is the one ComputeForces uses.
 void SymplecticEuler::SetWeights(double h, StepContext* c) const {
   c->time_step = h;
   c->inertia_weight = 0.0;

@@ -8,7 +8,7 @@
 // effective gap with the BarrierLoss; weight the first edge's weight (pairs
 // are stored with e < f; both edges of a grid have the same weight). The
 // mollifier's threshold uses the rest lengths: the positions given to the
-// constructor or SetRestPositions (the filter passes the scene's initial
+// constructor or SetRestPositions (the contact state passes the initial
 // positions), or else those of the first Extend.
 // Candidates, time of impact, checks: as PointTrianglePairs (additive CCD of
 // the segment-segment distance, geometry/self_ccd.h). Friction: the relative

@@ -2,9 +2,11 @@
 // friction, moving obstacles, 2D self-contact, both integrators, the three
 // optimiser families) runs a fixed number of steps and must reproduce the
 // iterations of every step exactly and the final positions to the stopping
-// rule's resolution tau h of the reference recorded before the contact filter
-// was split into pair sets (tests/contact/data/contact_reference.txt). A
-// step's solution is defined only to that resolution (core/stopping_rule.h:
+// rule's resolution tau h of the reference
+// (tests/contact/data/contact_reference.txt: first recorded before the contact
+// filter was split into pair sets, regenerated since by the deliberate
+// changes its git log lists). A step's solution is defined only to that
+// resolution (core/stopping_rule.h:
 // a converged step may keep a velocity error of tau), and the BLAS kernels
 // behind the factorisations are chosen per CPU model at run time (OpenBLAS),
 // so machines round differently: the cloth scenes' final positions differed

@@ -262,7 +262,8 @@ void ExpectInputError(json scene, const std::string& key, const std::string& wha
 }
 
 // Newmark with contact: the barrier and friction forces are impulses
-// (Integrator::UpdateWithImpulses), not part of the acceleration history.
+// (Newmark::Update, which asks for them at the solution through its
+// ImpulsiveForcesAt callback), not part of the acceleration history.
 // Before, a particle bouncing on the ground with Newmark(1/4, 1/2) left every
 // impact with a random energy (0.98 mJ -> 4.0, 21, 4.2, 17 mJ over 200 steps).
 TEST(ContactNewmark, ImpactsDoNotCreateEnergy) {

@@ -3,8 +3,8 @@
 // point_edge.h), case by case and region by region, at random well-conditioned
 // configurations, static and moving obstacles, 2D and 3D; the gap terms'
 // analytic curvature against the Newton model built from finite differences
-// of their Jacobians (core/term_hessian.h); and the contact filter's terms
-// carrying it.
+// of their Jacobians (core/term_hessian.h); and the terms the contact state
+// builds carrying it.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -787,7 +787,7 @@ TEST(GapCurvature, InactiveIsZeroAndInfeasibleFails) {
   EXPECT_FALSE(gap.Curvature(x, &c, curvature));
 }
 
-// Every gap term the contact filter builds carries its second-order model:
+// Every gap term the contact state builds carries its second-order model:
 // analytic curvature, or Gauss-Newton for plane gaps (affine distance).
 TEST(GapCurvature, ContactFilterTermsCarryCurvature) {
   // Term types: 0 plane point, 1 other point, 2 edge, 3 face, 4 box edge,
