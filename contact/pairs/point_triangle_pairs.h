@@ -77,10 +77,6 @@ class PointTrianglePairs
   void SetGap(size_t k, Term* term) const;
   bool LagPairFriction(const double* x, double t, const Pair& pair, const Measured& measured,
                        SelfFrictionLag* lag) const;
-  int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
-                    IncrementalPotential* potential) const {
-    return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
-  }
 
   SelfContactMesh geometry_;
   bool active_ = false;
