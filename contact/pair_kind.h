@@ -35,6 +35,8 @@
 //       from NormalForce;
 //   int FrictionTerms(const std::vector<FrictionLag>&, const FrictionSettings&,
 //                     IncrementalPotential*) const;
+//       the terms of the lags (default, for SelfFrictionLag: one SelfFriction
+//       term per lag, AddSelfFrictionTerms in contact/self_gap_terms.h).
 #pragma once
 
 #include <algorithm>
@@ -52,6 +54,7 @@
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
 #include "contact/pair_set.h"
+#include "contact/self_gap_terms.h"
 #include "contact/sorted_pairs.h"
 
 namespace ipstep {
@@ -116,6 +119,11 @@ class PairKind : public PairSet {
     (void)x;
     (void)t;
     return "";
+  }
+  // The default friction terms, of 3D self-contact lags.
+  int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
+                    IncrementalPotential* potential) const {
+    return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
   }
   // The lagged normal force kappa w (-B'(d)) (times `factor`, a mollifier).
   double NormalForce(const Pair& pair, double d, double factor = 1.0) const {

@@ -71,23 +71,18 @@ void EdgeEdgePairs::ForEachCandidate(const double* a, const double* b, double gr
                                      const F& f) const {
   if (!active_) return;
   const auto& edges = c_.mesh->edges;
-  auto find = [&](std::vector<Pair>* candidates) {
-    SelfContactMesh::BuildTree(edges, a, b, grow, &bvh_);
-    for (size_t e = 0; e < edges.size(); ++e) {
-      Eigen::Vector3d lower, upper;
-      SelfContactMesh::MotionBox(a, b, edges[e], 0.0, &lower, &upper);
-      bvh_.Query(lower, upper, &ids_);
-      std::sort(ids_.begin(), ids_.end());
-      for (int other : ids_) {
-        if (other <= static_cast<int>(e)) continue;
-        const auto& u = edges[e];
-        const auto& v = edges[other];
-        if (u[0] == v[0] || u[0] == v[1] || u[1] == v[0] || u[1] == v[1]) continue;
-        candidates->push_back(Pair{static_cast<int>(e), other});
-      }
-    }
+  // The edges' tree queried with each edge e, keeping the later edges
+  // without a common node.
+  auto query = [&](size_t e) { return edges[e]; };
+  auto keep = [&](size_t e, int other, Pair* pair) {
+    const auto& u = edges[e];
+    const auto& v = edges[other];
+    *pair = Pair{static_cast<int>(e), other};
+    return other > static_cast<int>(e) && u[0] != v[0] && u[0] != v[1] && u[1] != v[0] &&
+           u[1] != v[1];
   };
-  candidates_.ForEach(a, b, geometry_.num_coordinates(), grow, &broad_phase_seconds_, find, f);
+  broad_phase_.ForEachCandidate(a, b, grow, geometry_.num_coordinates(), edges, edges.size(), query,
+                                keep, f);
 }
 
 bool EdgeEdgePairs::Extend(const CandidateRegion& region) {

@@ -23,7 +23,7 @@
 #include <Eigen/Core>
 
 #include "contact/pair_kind.h"
-#include "contact/pairs/candidate_cache.h"
+#include "contact/pairs/self_broad_phase.h"
 #include "contact/pairs/self_contact_mesh.h"
 #include "contact/self_gap_terms.h"
 
@@ -51,7 +51,7 @@ class EdgeEdgePairs : public PairKind<EdgeEdgePairs, EdgeEdgePair, NoPairData, S
 
   bool Extend(const CandidateRegion& region) override;
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
-  double BroadPhaseSeconds() const override { return broad_phase_seconds_; }
+  double BroadPhaseSeconds() const override { return broad_phase_.seconds(); }
 
   double Distance(const double* x, const Pair& pair) const;
   // eps_x of a pair (0 before rest positions are known: no mollifier).
@@ -84,18 +84,11 @@ class EdgeEdgePairs : public PairKind<EdgeEdgePairs, EdgeEdgePair, NoPairData, S
   void SetGap(size_t k, Term* term) const;
   bool LagPairFriction(const double* x, double t, const Pair& pair, const Measured& measured,
                        SelfFrictionLag* lag) const;
-  int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
-                    IncrementalPotential* potential) const {
-    return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
-  }
 
   SelfContactMesh geometry_;
   bool active_ = false;
   std::vector<double> rest_length2_;  // per edge
-  mutable Bvh bvh_;
-  mutable std::vector<int> ids_;
-  mutable CandidateCache<Pair> candidates_;  // ForEachCandidate's broad-phase output
-  mutable double broad_phase_seconds_ = 0.0;
+  SelfBroadPhase<Pair> broad_phase_;
 };
 
 // Instantiated once, in the .cc (where ForEachCandidate is defined).

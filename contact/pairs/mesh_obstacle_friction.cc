@@ -32,7 +32,7 @@ void MeshObstaclePairs::LagFriction(const double* x, double t) {
     f.normal_force = -kappa * weight * BarrierDerivative(d, d_hat_);
     return f;
   };
-  for (const FacePair& p : face_pairs_) {
+  for (const FacePair& p : face_pairs_.pairs()) {
     Eigen::Vector3d grad[3], w;
     const double d = Distance(x, t, p, grad, &w);
     if (!(d > 0.0 && d < d_hat_)) continue;
@@ -47,7 +47,7 @@ void MeshObstaclePairs::LagFriction(const double* x, double t) {
     f.alpha = {w[0], w[1], w[2]};
     friction_.push_back(f);
   }
-  for (const BoxEdgePair& p : box_edge_pairs_) {
+  for (const BoxEdgePair& p : box_edge_pairs_.pairs()) {
     Eigen::Vector3d grad[2];
     double s = 0.0;
     const double d = Distance(x, t, p, grad, &s);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -14,53 +13,6 @@
 #include "geometry/point_triangle.h"
 
 namespace ipstep {
-
-namespace {
-
-// Merges the sorted `added` into the sorted `pairs` (skipping those already
-// there), inserting lag(pair) into the parallel `lags`; true if any was new.
-template <class Pair, class Lag, class Value>
-bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs, std::vector<Value>* lags,
-                const Lag& lag) {
-  std::vector<Pair> merged;
-  std::vector<Value> merged_lags;
-  merged.reserve(pairs->size() + added.size());
-  merged_lags.reserve(pairs->size() + added.size());
-  bool any = false;
-  size_t i = 0, j = 0;
-  while (i < pairs->size() || j < added.size()) {
-    if (j == added.size() || (i < pairs->size() && (*pairs)[i] < added[j])) {
-      merged.push_back((*pairs)[i]);
-      merged_lags.push_back((*lags)[i]);
-      ++i;
-    } else if (i < pairs->size() && (*pairs)[i] == added[j]) {
-      ++j;
-    } else {
-      merged.push_back(added[j]);
-      merged_lags.push_back(lag(added[j]));
-      any = true;
-      ++j;
-    }
-  }
-  if (any) {
-    *pairs = std::move(merged);
-    *lags = std::move(merged_lags);
-  }
-  return any;
-}
-
-// The same without lags.
-template <class Pair>
-bool MergePairs(const std::vector<Pair>& added, std::vector<Pair>* pairs) {
-  std::vector<Pair> merged;
-  std::set_union(pairs->begin(), pairs->end(), added.begin(), added.end(),
-                 std::back_inserter(merged));
-  const bool any = merged.size() != pairs->size();
-  *pairs = std::move(merged);
-  return any;
-}
-
-}  // namespace
 
 MeshObstaclePairs::MeshObstaclePairs(const PairSetContext& context)
     : c_(context),
@@ -81,14 +33,6 @@ MeshObstaclePairs::MeshObstaclePairs(const PairSetContext& context)
   for (const auto& e : surface_->edges) {
     edge_slots_.push_back({NodeSlot(*surface_, e[0]), NodeSlot(*surface_, e[1])});
   }
-}
-
-void MeshObstaclePairs::Clear() {
-  previous_faces_ = std::move(face_pairs_);
-  previous_box_edges_ = std::move(box_edge_pairs_);
-  face_pairs_.clear();
-  face_lag_.clear();
-  box_edge_pairs_.clear();
 }
 
 bool MeshObstaclePairs::FaceIsFree(int face) const {
@@ -182,27 +126,25 @@ void MeshObstaclePairs::ForEachNear(const double* x, double t, bool free_only,
 
 bool MeshObstaclePairs::Extend(const double* x, double t, const std::vector<double>& reach,
                                const std::vector<double>& travel) {
-  std::vector<FacePair> faces;
-  std::vector<BoxEdgePair> edges;
+  bool added = false;
   auto face_cutoff = [&](int f) { return d_hat_ + FaceReach(f, reach); };
   auto edge_cutoff = [&](int e) { return d_hat_ + EdgeReach(e, reach); };
   ForEachNear(
       x, t, true, std::function<double(int)>(face_cutoff), std::function<double(int)>(edge_cutoff),
       &travel,
       [&](const FacePair& p) {
-        if (Distance(x, t, p) < face_cutoff(p.face) + travel[p.obstacle]) faces.push_back(p);
+        if (!(Distance(x, t, p) < face_cutoff(p.face) + travel[p.obstacle])) return;
+        if (face_pairs_.Contains(p)) return;
+        Eigen::Vector3d w;  // a new pair's lag
+        Distance(x, t, p, nullptr, &w);
+        added |= face_pairs_.Insert(p, w);
       },
       [&](const BoxEdgePair& p) {
-        if (Distance(x, t, p) < edge_cutoff(p.edge) + travel[p.obstacle]) edges.push_back(p);
+        if (Distance(x, t, p) < edge_cutoff(p.edge) + travel[p.obstacle]) {
+          added |= box_edge_pairs_.Insert(p);
+        }
       });
-  // Visited in ascending order: already sorted.
-  const bool new_faces = MergePairs(faces, &face_pairs_, &face_lag_, [&](const FacePair& p) {
-    Eigen::Vector3d w;
-    Distance(x, t, p, nullptr, &w);
-    return w;
-  });
-  const bool new_edges = MergePairs(edges, &box_edge_pairs_);
-  return new_faces || new_edges;
+  return added;
 }
 
 bool MeshObstaclePairs::Missing(const double* x, double t) const {
@@ -211,14 +153,12 @@ bool MeshObstaclePairs::Missing(const double* x, double t) const {
   ForEachNear(
       x, t, true, cutoff, cutoff, nullptr,
       [&](const FacePair& p) {
-        if (!missing && Distance(x, t, p) < d_hat_ &&
-            !std::binary_search(face_pairs_.begin(), face_pairs_.end(), p)) {
+        if (!missing && Distance(x, t, p) < d_hat_ && !face_pairs_.Contains(p)) {
           missing = true;
         }
       },
       [&](const BoxEdgePair& p) {
-        if (!missing && Distance(x, t, p) < d_hat_ &&
-            !std::binary_search(box_edge_pairs_.begin(), box_edge_pairs_.end(), p)) {
+        if (!missing && Distance(x, t, p) < d_hat_ && !box_edge_pairs_.Contains(p)) {
           missing = true;
         }
       });
@@ -235,10 +175,10 @@ double MeshObstaclePairs::Lag(const double* x, double t) {
     const double d = Distance(x, t, p, nullptr, &w);
     if (d > 0.0 && d < d_hat_) {
       const double lagged = (*obstacles_)[p.obstacle]->FacePointDistance(
-          p.feature, Vertex(x, f[0]), Vertex(x, f[1]), Vertex(x, f[2]), face_lag_[k], t);
+          p.feature, Vertex(x, f[0]), Vertex(x, f[1]), Vertex(x, f[2]), face_pairs_.data()[k], t);
       excess = std::max(excess, (lagged - d) / d);
     }
-    face_lag_[k] = w;
+    face_pairs_.data()[k] = w;
   }
   return excess;
 }
@@ -254,9 +194,9 @@ void MeshObstaclePairs::AddBarrierTerms(IncrementalPotential* potential, const T
     term.impulsive = true;
     term.nodes = {f[0], f[1], f[2]};
     const Obstacle& obstacle = *(*obstacles_)[p.obstacle];
-    auto cost =
-        std::make_unique<FaceObstacleGap>(&obstacle, p.feature, time, d_hat_, margin_,
-                                          obstacle.FeatureRadius() > 0.0 ? &face_lag_[k] : nullptr);
+    auto cost = std::make_unique<FaceObstacleGap>(
+        &obstacle, p.feature, time, d_hat_, margin_,
+        obstacle.FeatureRadius() > 0.0 ? &face_pairs_.data()[k] : nullptr);
     term.curvature = GapCurvature(cost.get());
     term.cost = std::move(cost);
     term.loss = std::make_unique<BarrierLoss>(d_hat_, surface_->face_weights[p.face], kappa);

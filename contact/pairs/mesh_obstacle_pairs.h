@@ -31,6 +31,7 @@
 
 #include "contact/pair_set.h"
 #include "contact/primitive_obstacle_friction.h"
+#include "contact/sorted_pairs.h"
 
 namespace ipstep {
 
@@ -44,17 +45,20 @@ class MeshObstaclePairs : public PairSet {
   bool active() const { return active_; }
   bool empty() const { return face_pairs_.empty() && box_edge_pairs_.empty(); }
   size_t size() const override { return face_pairs_.size() + box_edge_pairs_.size(); }
-  void Clear() override;
+  void Clear() override {
+    face_pairs_.Clear();
+    box_edge_pairs_.Clear();
+  }
   bool ChangedSinceClear() const override {
-    return face_pairs_ != previous_faces_ || box_edge_pairs_ != previous_box_edges_;
+    return face_pairs_.Changed() || box_edge_pairs_.Changed();
   }
   bool Extend(const CandidateRegion& region) override {
     return Extend(region.start, *c_.time, *region.reach, *region.travel);
   }
   bool Missing(const double* x) const override { return Missing(x, *c_.time); }
   double Lag(const double* x) override { return Lag(x, *c_.time); }
-  void SaveLags() override { saved_lag_ = face_lag_; }
-  void RestoreLags() override { face_lag_ = saved_lag_; }
+  void SaveLags() override { saved_lag_ = face_pairs_.data(); }
+  void RestoreLags() override { face_pairs_.data() = saved_lag_; }
   bool TermsReadLags() const override { return !empty(); }
   void AddBarrierTerms(IncrementalPotential* potential) const override {
     AddBarrierTerms(potential, c_.barrier, c_.time, c_.kappa);
@@ -162,11 +166,10 @@ class MeshObstaclePairs : public PairSet {
   std::vector<std::array<int, 3>> face_slots_;
   std::vector<std::array<int, 2>> edge_slots_;
 
-  std::vector<FacePair> face_pairs_;         // sorted
-  std::vector<Eigen::Vector3d> face_lag_;    // barycentric weights per face pair
-  std::vector<BoxEdgePair> box_edge_pairs_;  // sorted
-  std::vector<FacePair> previous_faces_;     // emptied by Clear
-  std::vector<BoxEdgePair> previous_box_edges_;
+  // The active sets (contact/sorted_pairs.h); a face pair's data: its lagged
+  // barycentric weights.
+  SortedPairs<FacePair, Eigen::Vector3d> face_pairs_;
+  SortedPairs<BoxEdgePair> box_edge_pairs_;
   std::vector<Eigen::Vector3d> saved_lag_;
   std::vector<PrimitiveObstacleFrictionLag> friction_;
 };

@@ -9,7 +9,6 @@
 #include "contact/barrier.h"
 #include "contact/friction.h"
 #include "contact/self_gap_terms.h"
-#include "core/scoped_timer.h"
 #include "geometry/point_triangle.h"
 #include "geometry/self_ccd.h"
 #include "geometry/triangle_intersection.h"
@@ -57,21 +56,16 @@ void PointTrianglePairs::ForEachCandidate(const double* a, const double* b, doub
                                           const F& f) const {
   if (!active_) return;
   const CollisionMesh& mesh = *c_.mesh;
-  auto find = [&](std::vector<Pair>* candidates) {
-    SelfContactMesh::BuildTree(mesh.faces, a, b, grow, &bvh_);
-    for (int node : mesh.nodes) {
-      Eigen::Vector3d lower, upper;
-      SelfContactMesh::MotionBox(a, b, Single(node), 0.0, &lower, &upper);
-      bvh_.Query(lower, upper, &ids_);
-      std::sort(ids_.begin(), ids_.end());
-      for (int face : ids_) {
-        const auto& v = mesh.faces[face];
-        if (v[0] == node || v[1] == node || v[2] == node) continue;
-        candidates->push_back(Pair{node, face});
-      }
-    }
+  // The faces' tree queried with each node, less the faces that contain it.
+  auto query = [&](size_t i) { return Single(mesh.nodes[i]); };
+  auto keep = [&](size_t i, int face, Pair* pair) {
+    const int node = mesh.nodes[i];
+    const auto& v = mesh.faces[face];
+    *pair = Pair{node, face};
+    return v[0] != node && v[1] != node && v[2] != node;
   };
-  candidates_.ForEach(a, b, geometry_.num_coordinates(), grow, &broad_phase_seconds_, find, f);
+  broad_phase_.ForEachCandidate(a, b, grow, geometry_.num_coordinates(), mesh.faces,
+                                mesh.nodes.size(), query, keep, f);
 }
 
 bool PointTrianglePairs::Admits(const CandidateRegion& region, const Pair& pair,
@@ -124,18 +118,13 @@ std::string PointTrianglePairs::FindCrossing(const double* x, double) const {
   // Faces without a common node that intersect (exact predicates).
   const CollisionMesh& mesh = *c_.mesh;
   std::vector<std::pair<int, int>> face_pairs;
-  {
-    ScopedTimer timer(&broad_phase_seconds_);
-    SelfContactMesh::BuildTree(mesh.faces, x, x, 0.0, &bvh_);
-    for (size_t i = 0; i < mesh.faces.size(); ++i) {
-      Eigen::Vector3d lower, upper;
-      SelfContactMesh::MotionBox(x, x, mesh.faces[i], 0.0, &lower, &upper);
-      bvh_.Query(lower, upper, &ids_);
-      for (int j : ids_) {
-        if (j > static_cast<int>(i)) face_pairs.emplace_back(static_cast<int>(i), j);
-      }
-    }
-  }
+  broad_phase_.Overlaps(
+      x, x, 0.0, mesh.faces, mesh.faces.size(), [&](size_t i) { return mesh.faces[i]; },
+      [&](size_t i, const std::vector<int>* ids) {
+        for (int j : *ids) {
+          if (j > static_cast<int>(i)) face_pairs.emplace_back(static_cast<int>(i), j);
+        }
+      });
   for (const auto& [i, j] : face_pairs) {
     const auto& fi = mesh.faces[i];
     const auto& fj = mesh.faces[j];

@@ -6,12 +6,13 @@
 // Barrier: PointTriangleGap (contact/self_gap_terms.h) with the BarrierLoss,
 // weight the node's (its area share), analytic curvature. Candidates: the
 // faces' boxes over the motion grown by d_hat + max_reach overlap the node's
-// box (BVH, geometry/bvh.h), then the exact distance at the start, minus how
-// far the primitives move, below d_hat + the pair's reach. Time of impact:
-// additive conservative advancement (geometry/self_ccd.h) of every pair whose
-// boxes grown by the margin overlap. FindPenetration: distances at most the
-// margin, and (independently of the distances) any two faces without a
-// common node that intersect (geometry/triangle_intersection.h). Friction:
+// box (contact/pairs/self_broad_phase.h), then the exact distance at the
+// start, minus how far the primitives move, below d_hat + the pair's reach.
+// Time of impact: additive conservative advancement (geometry/self_ccd.h) of
+// every pair whose boxes grown by the margin overlap. FindPenetration:
+// distances at most the margin, and (independently of the distances) any two
+// faces without a common node that intersect
+// (geometry/triangle_intersection.h). Friction:
 // lagged normal force kappa w (-B'(d)), tangent basis of the closest points'
 // direction, relative velocity of the node and its closest point on the
 // face at the lagged barycentric weights (SelfFriction).
@@ -24,7 +25,7 @@
 #include <Eigen/Core>
 
 #include "contact/pair_kind.h"
-#include "contact/pairs/candidate_cache.h"
+#include "contact/pairs/self_broad_phase.h"
 #include "contact/pairs/self_contact_mesh.h"
 #include "contact/self_gap_terms.h"
 
@@ -51,7 +52,7 @@ class PointTrianglePairs
   bool active() const { return active_; }
 
   double TimeOfImpact(const double* a, const double* b, double t_a, double t_b) const override;
-  double BroadPhaseSeconds() const override { return broad_phase_seconds_; }
+  double BroadPhaseSeconds() const override { return broad_phase_.seconds(); }
 
  private:
   using Base = PairKind<PointTrianglePairs, PointTrianglePair, NoPairData, SelfFrictionLag>;
@@ -77,17 +78,10 @@ class PointTrianglePairs
   void SetGap(size_t k, Term* term) const;
   bool LagPairFriction(const double* x, double t, const Pair& pair, const Measured& measured,
                        SelfFrictionLag* lag) const;
-  int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
-                    IncrementalPotential* potential) const {
-    return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
-  }
 
   SelfContactMesh geometry_;
   bool active_ = false;
-  mutable Bvh bvh_;
-  mutable std::vector<int> ids_;
-  mutable CandidateCache<Pair> candidates_;  // ForEachCandidate's broad-phase output
-  mutable double broad_phase_seconds_ = 0.0;
+  SelfBroadPhase<Pair> broad_phase_;
 };
 
 // Instantiated once, in the .cc (where ForEachCandidate is defined).

@@ -1,8 +1,8 @@
 // What the two 3D self-contact pair kinds (point_triangle_pairs.h,
 // edge_edge_pairs.h) share: node positions, node slots (the collision mesh's
-// table, NodeSlot), the boxes of primitives over a linear motion and the
-// broad phase (geometry/bvh.h) that pairs them, the tangent basis of a contact
-// normal.
+// table, NodeSlot), the boxes of primitives over a linear motion and their
+// tree (geometry/bvh.h), which the broad phase (self_broad_phase.h) queries,
+// the tangent basis of a contact normal.
 //
 // Broad phase: the BVH was measured faster than the spatial hash on a folded
 // 100 x 100 cloth (bench/broad_phase_bench.cc, numbers in the commit and
