@@ -18,6 +18,7 @@
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/parse_number.h"
+#include "core/scoped_timer.h"
 #include "energies/effect_registry.h"
 #include "problems/scene_loader.h"
 #include "sim/run_trajectory.h"
@@ -25,12 +26,6 @@
 namespace ipstep {
 namespace bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string Quote(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
@@ -115,7 +110,7 @@ void WriteReference(const std::string& file, const std::string& key,
 
 Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec) {
   Trajectory out;
-  const auto setup_start = Clock::now();
+  const auto setup_start = WallClock::now();
   SceneLoadOptions load;
   load.grid_size = config.grid_size;
   const EffectRegistry& effects = config.effects ? *config.effects : DefaultEffects();
@@ -141,7 +136,7 @@ Trajectory RunConfiguration(const RunConfig& config, const OptimizerSpec& spec) 
                  config.integrator + (variational ? "" : " (use none)");
     return out;
   }
-  out.setup_seconds = Since(setup_start);
+  out.setup_seconds = SecondsSince(setup_start);
   const State& state = sim->state();
   out.nodes = state.num_nodes();
   out.dimension = state.dimension;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/scoped_timer.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
 #include "sim/run_trajectory.h"
@@ -25,12 +26,6 @@
 #include "solver/sparse_cholesky.h"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct Case {
   const char* name;
@@ -72,12 +67,12 @@ int main(int argc, char** argv) {
     RunOptions run;
     run.after_step = [&report](const StepReport& r) { report = r; };
     const double step_seconds = RunTrajectory(sim, run).wall_seconds;
-    auto start = Clock::now();
+    auto start = WallClock::now();
     if (!solver->AssembleHessian(sim.state().x)) {
       std::fprintf(stderr, "the Hessian cannot be evaluated at the step's result\n");
       return 1;
     }
-    const double assemble = Since(start);
+    const double assemble = SecondsSince(start);
     const Eigen::SparseMatrix<double> matrix = solver->hessian();
     std::printf("scene %s, %s: one step %s in %d iterations, %.3f s\n", scene.name.c_str(),
                 integrator.c_str(), report.status.c_str(), report.iterations, step_seconds);
@@ -85,7 +80,7 @@ int main(int argc, char** argv) {
                 static_cast<long>(matrix.rows()), static_cast<long>(matrix.nonZeros()),
                 1e3 * assemble);
     // The nodes' nested dissection expanded to the free unknowns.
-    start = Clock::now();
+    start = WallClock::now();
     const std::vector<int> nodes = NestedDissectionNodeOrder(*potential, sim.state());
     std::vector<int> permutation;
     const int dim = sim.state().dimension;
@@ -95,7 +90,7 @@ int main(int argc, char** argv) {
         if (free >= 0) permutation.push_back(free);
       }
     }
-    const double node_ordering = Since(start);
+    const double node_ordering = SecondsSince(start);
     const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(matrix.rows());
     Eigen::VectorXd solution;
     const Case cases[] = {
@@ -111,24 +106,24 @@ int main(int argc, char** argv) {
     for (const Case& c : cases) {
       if (c.node_order && static_cast<int>(permutation.size()) != matrix.rows()) continue;
       auto cholesky = SparseCholesky::Create(c.library, c.ordering);
-      start = Clock::now();
+      start = WallClock::now();
       if (!cholesky->Analyze(matrix, c.node_order ? &permutation : nullptr)) {
         std::printf("%-44s analysis failed\n", c.name);
         continue;
       }
-      double analyse = Since(start);
+      double analyse = SecondsSince(start);
       if (c.node_order) analyse += node_ordering;
       double factorise = 1e300;
       SparseCholesky::Result result = SparseCholesky::Result::kFailure;
       for (int r = 0; r < repeats; ++r) {
-        start = Clock::now();
+        start = WallClock::now();
         result = cholesky->Factorize(matrix);
-        factorise = std::min(factorise, Since(start));
+        factorise = std::min(factorise, SecondsSince(start));
       }
-      start = Clock::now();
+      start = WallClock::now();
       const bool solved =
           result == SparseCholesky::Result::kSuccess && cholesky->Solve(rhs, &solution);
-      const double solve = Since(start);
+      const double solve = SecondsSince(start);
       std::printf("%-44s %12.4g %12.1f %14.1f %10.1f%s\n", c.name, cholesky->FactorNonZeros(),
                   1e3 * analyse, 1e3 * factorise, 1e3 * solve,
                   solved ? "" : "  (not positive definite)");

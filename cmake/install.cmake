@@ -18,8 +18,10 @@ if(TARGET ipstep_bench_lib)  # ipstep::bench (bench/bench_program.h: RunBench)
           DESTINATION include/ipstep/bench)
 endif()
 foreach(dir apps contact core energies geometry integrators mesh problems sim solver io)
+  # problems/scene_parser.h is the scene loader's internal reader (namespace
+  # internal), not an interface: not installed.
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION include/ipstep/${dir}
-    FILES_MATCHING PATTERN "*.h")
+    FILES_MATCHING PATTERN "*.h" PATTERN "scene_parser.h" EXCLUDE)
 endforeach()
 install(EXPORT ipstepTargets NAMESPACE ipstep:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/ipstep)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/ipstepConfig.cmake.in

@@ -9,18 +9,13 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "core/scoped_timer.h"
 #include "sim/divergence.h"
 #include "sim/simulation_option_table.h"
 #include "sim/step_size_controller.h"
 
 namespace ipstep {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string Printf(const char* format, int a, double b) {
   char text[120];
@@ -55,7 +50,7 @@ namespace {
 class StepRecorder {
  public:
   StepRecorder(Simulation* sim, const RunOptions& options, double t_end, RunSummary* run)
-      : sim_(sim), options_(options), rule_(*sim, t_end), run_(run), start_(Clock::now()) {
+      : sim_(sim), options_(options), rule_(*sim, t_end), run_(run), start_(WallClock::now()) {
     run_->initial_energies = rule_.initial_energies();
     run_->final_energies = run_->initial_energies;
     run_->energy_scale = rule_.EnergyScale(0.0);
@@ -117,7 +112,7 @@ class StepRecorder {
       return true;
     }
     if (options_.max_wall_seconds > 0.0 && more_to_come &&
-        Since(start_) > options_.max_wall_seconds) {
+        SecondsSince(start_) > options_.max_wall_seconds) {
       run.termination = RunTermination::kTimeout;
       return true;
     }
@@ -126,7 +121,7 @@ class StepRecorder {
 
   void Finish() {
     RunSummary& run = *run_;
-    run.wall_seconds = Since(start_);
+    run.wall_seconds = SecondsSince(start_);
     run.energy_scale = rule_.EnergyScale(sim_->state().time - rule_.start_time(), work_);
     switch (run.termination) {
       case RunTermination::kCompleted:
@@ -157,7 +152,7 @@ class StepRecorder {
   const RunOptions& options_;
   const DivergenceRule rule_;
   RunSummary* run_;
-  Clock::time_point start_;
+  WallClock::time_point start_;
   double work_ = 0.0;  // prescribed work so far, summed in magnitude [J]
 };
 
