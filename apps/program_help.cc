@@ -9,7 +9,10 @@
 #include <gflags/gflags_completions.h>
 
 #include "apps/version.h"
+#include "core/option_table.h"
+#include "integrators/integrator_option_table.h"
 #include "problems/scene_loader.h"
+#include "solver/optimizer_option_table.h"
 
 namespace ipstep {
 namespace {
@@ -21,26 +24,32 @@ struct GroupEntry {
   std::vector<const char*> flags;
 };
 
+// The flags of a table's rows, in the table's order, then `more`.
+template <class Options>
+std::vector<const char*> FlagsOf(const OptionTable<Options>& table, std::vector<const char*> more) {
+  std::vector<const char*> flags;
+  for (const OptionRow<Options>& row : table) {
+    if (!row.flag.empty()) flags.push_back(row.flag.c_str());
+  }
+  flags.insert(flags.end(), more.begin(), more.end());
+  return flags;
+}
+
 const std::vector<GroupEntry>& Groups() {
-  // ipstep's flags, then ipstep_compare's and ipstep_bench's lists.
+  // ipstep's flags, then ipstep_compare's and ipstep_bench's lists. The
+  // integrator's and the optimiser's options are their tables' rows
+  // (integrators/integrator_option_table.h, solver/optimizer_option_table.h).
   static const auto* const groups = new std::vector<GroupEntry>{
       {"scene",
        "Scene",
        {"scene", "grid_size", "dt", "steps", "scenes", "grid_sizes", "dts", "dt_factors", "t_end"}},
-      {"integrator",
-       "Integrator, failed steps and adaptive steps",
-       {"integrator", "newmark_beta", "newmark_gamma", "energy_tolerance", "max_substeps",
-        "on_failure", "integrators", "adaptive", "error_tolerance", "min_dt", "max_dt"}},
-      {"optimiser", "Optimiser", {"optimizer",           "tolerance",
-                                  "max_iterations",      "time_limit",
-                                  "num_threads",         "linear_solver",
-                                  "sparse_library",      "linear_solver_ordering",
-                                  "trust_region_radius", "backtrack_rejected_steps",
-                                  "line_search",         "nonlinear_cg",
-                                  "lbfgs_rank",          "mass_scaled_coordinates",
-                                  "precise_energy",      "hessian_projection",
-                                  "optimizers",          "tolerances",
-                                  "reference_optimizer", "reference_tolerance"}},
+      {"integrator", "Integrator, failed steps and adaptive steps",
+       FlagsOf(IntegratorOptionTable(),
+               {"energy_tolerance", "max_substeps", "on_failure", "integrators", "adaptive",
+                "error_tolerance", "min_dt", "max_dt"})},
+      {"optimiser", "Optimiser",
+       FlagsOf(OptimizerOptionTable(),
+               {"optimizers", "tolerances", "reference_optimizer", "reference_tolerance"})},
       {"contact",
        "Contact (scenes with the contact or friction effect)",
        {"contact_kappa", "contact_dhat", "friction_mu", "friction_iterations"}},
