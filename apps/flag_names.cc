@@ -37,6 +37,7 @@ const std::vector<FlagName>& FlagNames() {
       {"options: AdaptiveOptions.initial_time_step", "dt"},
       {"options: AdaptiveOptions.min_time_step", "min_dt"},
       {"options: AdaptiveOptions.max_time_step", "max_dt"},
+      {"options: AdaptiveOptions.filter_stiff_modes", "filter_stiff_modes"},
       {"options: RunOptions.adaptive", "adaptive"},
       // problems/generators.cc (the grid generator)
       {"options: SceneLoadOptions.grid_size", "grid_size"},

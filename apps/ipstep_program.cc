@@ -67,6 +67,8 @@ DEFINE_bool(adaptive, false,
             "time_step x steps): each step's local error estimate within --error_tolerance x "
             "h / t_end, rejected steps retried smaller; --dt is the first step");
 DEFINE_double(error_tolerance, 1e-3, ipstep::ProgramFlagHelp("error_tolerance"));
+DEFINE_bool(filter_stiff_modes, ipstep::FlagDefault<bool>("filter_stiff_modes"),
+            ipstep::ProgramFlagHelp("filter_stiff_modes"));
 DEFINE_double(min_dt, ipstep::FlagDefault<double>("min_dt"), ipstep::FlagHelp("min_dt"));
 DEFINE_double(max_dt, ipstep::FlagDefault<double>("max_dt"), ipstep::FlagHelp("max_dt"));
 
@@ -145,6 +147,7 @@ int Run(const EffectRegistry& registry) {
     adaptive.error_tolerance = checked("error_tolerance", FLAGS_error_tolerance);
     if (!FlagIsDefault("min_dt")) adaptive.min_time_step = checked("min_time_step", FLAGS_min_dt);
     if (!FlagIsDefault("max_dt")) adaptive.max_time_step = checked("max_time_step", FLAGS_max_dt);
+    adaptive.filter_stiff_modes = FLAGS_filter_stiff_modes;
     if (!FlagIsDefault("max_substeps")) {
       throw InputError("flag", "--max_substeps",
                        "an --adaptive run retries failed steps smaller itself");
@@ -152,7 +155,7 @@ int Run(const EffectRegistry& registry) {
     // The solve's tolerance follows the error budget unless --tolerance says.
     ConfigureAdaptiveSimulation(adaptive, /*keep_tolerance=*/!FlagIsDefault("tolerance"), &options);
   } else {
-    for (const char* flag : {"error_tolerance", "min_dt", "max_dt"}) {
+    for (const char* flag : {"error_tolerance", "min_dt", "max_dt", "filter_stiff_modes"}) {
       if (!FlagIsDefault(flag)) {
         throw InputError("flag", std::string("--") + flag, "applies with --adaptive only");
       }

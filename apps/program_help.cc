@@ -46,7 +46,7 @@ const std::vector<GroupEntry>& Groups() {
       {"integrator", "Integrator, failed steps and adaptive steps",
        FlagsOf(IntegratorOptionTable(),
                {"energy_tolerance", "max_substeps", "on_failure", "integrators", "adaptive",
-                "error_tolerance", "min_dt", "max_dt"})},
+                "error_tolerance", "min_dt", "max_dt", "filter_stiff_modes"})},
       {"optimiser", "Optimiser",
        FlagsOf(OptimizerOptionTable(),
                {"optimizers", "tolerances", "reference_optimizer", "reference_tolerance"})},

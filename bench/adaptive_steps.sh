@@ -16,8 +16,10 @@
 # fixed runs, "default": ipstep's 1e-5 m/s; e.g. "default 1e-8"), TOLERANCES
 # ("1e-2 1e-3 1e-4 1e-5"; backward Euler stops at 1e-4: first order, 1e-5
 # takes ~10^6-10^7 steps), MAX_SECONDS per run (120; a run cut there is a row
-# with failed = timeout). Cost: the process's wall time and, independent of
-# the machine, the solver iterations of the run (rejected attempts included).
+# with failed = timeout), ADAPTIVE_FLAGS (more flags for the adaptive runs,
+# e.g. "--filter_stiff_modes=false"; none by default). Cost: the process's
+# wall time and, independent of the machine, the solver iterations of the run
+# (rejected attempts included).
 set -euo pipefail
 build=${1:?build directory}
 out=${2:?output CSV}
@@ -91,8 +93,9 @@ print('1,%.17g,0' % (1 + 0.1 * math.cos($t_end)))" > "$work/ref_${scene//\//_}.c
     done
     for tolerance in ${TOLERANCES:-1e-2 1e-3 1e-4 1e-5}; do
       if [ "$integrator" = backward_euler ] && [ "$tolerance" = 1e-5 ]; then continue; fi
+      # shellcheck disable=SC2086 # ADAPTIVE_FLAGS: words
       run "$scene" "$integrator" "$optimizer" adaptive "$tolerance" tied --adaptive --error_tolerance="$tolerance" \
-        --t_end="$t_end"
+        --t_end="$t_end" ${ADAPTIVE_FLAGS:-}
     done
     echo "adaptive_steps: $scene $integrator $optimizer done" >&2
    done

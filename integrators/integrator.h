@@ -48,20 +48,21 @@ class Integrator {
   // control (quasi-static).
   virtual int order() const { return 1; }
   // An estimate of the position error [m] that the step of h from `before` to
-  // `after` made (largest over free nodes). This default, for the first-order
-  // schemes (backward and symplectic Euler, x_{n+1} = x_n + h v_{n+1}), is the
-  // distance to the trapezoidal rule's positions with the same velocities,
-  //   e = h/2 |v_{n+1} - v_n|,
-  // the leading term of the local error h^2/2 |a| (an embedded pair: no extra
+  // `after` made, per degree of freedom (`error`, the state's per-node
+  // layout). This default, for the first-order schemes (backward and
+  // symplectic Euler, x_{n+1} = x_n + h v_{n+1}), is the distance to the
+  // trapezoidal rule's positions with the same velocities,
+  //   e = h/2 (v_{n+1} - v_n),
+  // the leading term of the local error h^2/2 a (an embedded pair: no extra
   // solve). Contact forces are in it: a body resting on an obstacle has e = 0,
   // an impact raises it (sim/step_size_controller.h treats that as an event).
-  virtual double LocalError(const State& before, const State& after, double h) const;
-
- protected:
-  // The largest |after_i - before_i| over the free nodes of `state` (vectors
-  // of its per-node layout: velocities, accelerations), for LocalError.
-  static double LargestFreeNodeChange(const State& state, const Eigen::VectorXd& before,
-                                      const Eigen::VectorXd& after);
+  virtual void LocalErrorVector(const State& before, const State& after, double h,
+                                Eigen::VectorXd* error) const;
+  // The largest |e_i| over the free nodes of LocalErrorVector [m].
+  double LocalError(const State& before, const State& after, double h) const;
+  // The largest |v_i| over the free nodes of `state` (a vector of its
+  // per-node layout).
+  static double LargestFreeNodeNorm(const State& state, const Eigen::VectorXd& v);
 };
 
 }  // namespace ipstep

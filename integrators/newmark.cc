@@ -66,9 +66,9 @@ void Newmark::UpdateWithImpulses(const Eigen::VectorXd& x_next,
   s->x = x_next;
 }
 
-double Newmark::LocalError(const State& before, const State& after, double h) const {
-  return h * h * (std::abs(beta_ - 1.0 / 6.0) + std::abs(gamma_ - 0.5)) *
-         LargestFreeNodeChange(after, before.a, after.a);
+void Newmark::LocalErrorVector(const State& before, const State& after, double h,
+                               Eigen::VectorXd* error) const {
+  *error = h * h * (std::abs(beta_ - 1.0 / 6.0) + std::abs(gamma_ - 0.5)) * (after.a - before.a);
 }
 
 }  // namespace ipstep

@@ -74,7 +74,8 @@ class Newmark : public VariationalIntegrator {
   // a cubic through the same accelerations) with the smooth accelerations the
   // state keeps: contact impulses are not in them (Update), the
   // controller budgets an impact's timing separately.
-  double LocalError(const State& before, const State& after, double h) const override;
+  void LocalErrorVector(const State& before, const State& after, double h,
+                        Eigen::VectorXd* error) const override;
 
   static constexpr double kMinBeta = 1e-3;
   static constexpr double kMaxBeta = 1.0;

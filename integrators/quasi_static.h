@@ -15,7 +15,10 @@ class QuasiStatic : public VariationalIntegrator {
   std::string name() const override { return "quasi_static"; }
   // No time-discretisation error: each step is an equilibrium.
   int order() const override { return 0; }
-  double LocalError(const State&, const State&, double) const override { return 0.0; }
+  void LocalErrorVector(const State&, const State& after, double,
+                        Eigen::VectorXd* error) const override {
+    *error = Eigen::VectorXd::Zero(after.x.size());
+  }
   bool has_inertia() const override { return false; }
   void SetWeights(double h, StepContext* context) const override;
   void Predict(const State& state, const Eigen::VectorXd& gravity, double h, StepContext* context,

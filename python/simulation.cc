@@ -311,7 +311,8 @@ void BindSimulation(py::module_& m) {
            "Simulation(scene, integrator='backward_euler', optimizer='newton', dt=None (the "
            "scene's), **options): scene is a Scene or what load_scene takes; options are the "
            "library's (ipstep.options()). adaptive=True with error_tolerance=E [m] (and "
-           "min_time_step, max_time_step, safety, max_growth, max_shrink): run() takes "
+           "min_time_step, max_time_step, safety, max_growth, max_shrink, filter_stiff_modes): "
+           "run() takes "
            "error-controlled steps to the end time (t_end, steps x dt or the scene's), dt the "
            "first, as ipstep --adaptive. Bad input raises ValueError.")
       .def("step", &PySimulation::Step,

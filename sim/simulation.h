@@ -26,6 +26,8 @@
 
 namespace ipstep {
 
+class StiffModeFilter;  // sim/stiff_mode_filter.h
+
 struct SimulationOptions {
   IntegratorOptions integrator;
   OptimizerOptions optimizer;
@@ -84,6 +86,7 @@ class Simulation {
  public:
   // Throws InputError for invalid options or scene/effect parameters.
   Simulation(const Scene& scene, const SimulationOptions& options);
+  ~Simulation();
   Simulation(const Simulation&) = delete;  // terms and solvers point into it
   Simulation& operator=(const Simulation&) = delete;
 
@@ -146,6 +149,12 @@ class Simulation {
   // when there are none (or they cannot be evaluated).
   bool ImpulsiveForces(const Eigen::VectorXd& x, Eigen::VectorXd* forces) const;
 
+  // The local error estimate [m] of the step just taken from `before` with h
+  // (Integrator::LocalErrorVector; largest over free nodes), with
+  // `filter_stiff_modes` through the step's own matrix (sim/stiff_mode_filter.h;
+  // variational integrators with inertia only, the others' raw estimate).
+  double LocalError(const State& before, double h, bool filter_stiff_modes);
+
   // Extra per-step columns contributed by step filters (e.g. contact).
   std::vector<std::string> DiagnosticNames() const;
   void set_iteration_sink(IterationSink sink);
@@ -179,6 +188,7 @@ class Simulation {
   // Exactly one kind is set (MakeIntegrator): it chooses the step path of Advance.
   MadeIntegrator integrator_;
   std::unique_ptr<IncrementalPotential> potential_;
+  std::unique_ptr<StiffModeFilter> stiff_mode_filter_;  // built by the first filtered LocalError
   std::unique_ptr<StepSolver> solver_;
   EffectList effects_;
   std::vector<std::string> effect_summaries_;

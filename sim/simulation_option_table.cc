@@ -174,6 +174,14 @@ const OptionTable<AdaptiveOptions>& AdaptiveOptionTable() {
                   1.0, "", "", /*min_open=*/true);
     BindField(&AdaptiveOptions::max_shrink, &shrink);
     t.push_back(shrink);
+    Row filter = MakeOptionRow<AdaptiveOptions>(
+        "filter_stiff_modes", "AdaptiveOptions.filter_stiff_modes", "filter_stiff_modes",
+        OptionType::kBool, AdaptiveOptions{}.filter_stiff_modes,
+        "Adaptive runs: judge the local error estimate through the step's own matrix, "
+        "(M + c K)^-1 M e, so that modes the step does not resolve count by their amplitude, "
+        "not their acceleration (sim/stiff_mode_filter.h); false: the raw estimate");
+    BindField(&AdaptiveOptions::filter_stiff_modes, &filter);
+    t.push_back(filter);
     return t;
   }();
   return table;

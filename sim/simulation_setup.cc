@@ -18,6 +18,7 @@
 #include "energies/term_builder.h"
 #include "sim/default_effects.h"
 #include "sim/simulation_option_table.h"
+#include "sim/stiff_mode_filter.h"  // complete for the constructor's cleanup
 
 namespace ipstep {
 

@@ -6,7 +6,10 @@
 // error that is the sum of the local ones stays within tol), and the
 // integrator's local error estimate e of the smooth motion
 // (Integrator::LocalError: an embedded pair, no extra solve) is compared with
-// it. An impact is an event, not smooth motion: the velocity change that the
+// it, filtered through the step's own matrix so that modes the step does not
+// resolve count by their amplitude (AdaptiveOptions::filter_stiff_modes,
+// sim/stiff_mode_filter.h).
+// An impact is an event, not smooth motion: the velocity change that the
 // change of the contact forces causes in a step, dv_c = h M^-1 (f_c(x_{n+1}) -
 // f_c(x_n)), puts the impact's time within the step, a position error
 // e_c = h/2 |dv_c| whatever the step count, and resolving the barrier's own
@@ -43,6 +46,10 @@ struct AdaptiveOptions {
   double safety = 0.9;
   double max_growth = 2.0;
   double max_shrink = 0.2;  // the smallest factor of a rejection
+  // The local error estimate through the step's own matrix (M + c K)^-1 M e
+  // (sim/stiff_mode_filter.h): modes the step does not resolve are judged by
+  // their amplitude, not their acceleration.
+  bool filter_stiff_modes = true;
 };
 
 // Throws InputError naming the option (AdaptiveOptions.error_tolerance, ...).
@@ -80,6 +87,9 @@ class StepSizeController {
 
  private:
   double Clamp(double h) const;
+  // The ratio r of the error to its budget that Judge decides by (accepted
+  // when r <= 1, or at the smallest step); Judge's arguments.
+  double Ratio(double h, double error, double impact_error, double contact_error) const;
   AdaptiveOptions options_;
   int order_;
   double min_h_, max_h_;
