@@ -49,22 +49,6 @@ class ContactFilter : public StepFilter {
   std::vector<double> Diagnostics(const double* x) const override;
   double PrescribedWork(const double* x_start, const double* x_end) override;
 
-  // The state the filter works with, and what of it the filter's users read.
-  const ContactState& contact() const { return *contact_; }
-  std::string FindPenetration(const double* x, double t) const {
-    return contact_->FindPenetration(x, t);
-  }
-  double MinDistance(const double* x, double reach) const {
-    return contact_->MinDistance(x, reach);
-  }
-  bool has_friction() const { return contact_->has_friction(); }
-  double kappa() const { return contact_->kappa(); }
-  bool adaptive_kappa() const { return contact_->adaptive_kappa(); }
-  double d_hat() const { return contact_->d_hat(); }
-  double obstacle_time() const { return contact_->obstacle_time(); }
-  const CollisionMesh& mesh() const { return contact_->mesh(); }
-  const ObstacleList& obstacles() const { return contact_->obstacles(); }
-
  private:
   ContactState* contact_;
   Eigen::VectorXd accepted_;

@@ -62,7 +62,7 @@ TEST(ContactEffect, TheSimulationFindsItAndItsObstacles) {
   const ContactEffect* contact = sim.FindEffect<ContactEffect>();
   ASSERT_NE(contact, nullptr);
   EXPECT_FALSE(contact->obstacles().empty());
-  EXPECT_TRUE(contact->filter().has_friction());
+  EXPECT_TRUE(contact->state().has_friction());
   EXPECT_EQ(sim.effects().Find("contact"), contact);
   EXPECT_EQ(sim.effects().size(), static_cast<int>(scene.effects.size()));
   // No contact: no effect.

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "contact/contact_filter.h"
+#include "contact/contact_effect.h"
 #include "core/input_error.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
@@ -35,11 +35,11 @@ Scene Parse(const json& scene, const std::string& source) {
   return ParseScene(scene, source, options);
 }
 
-const ContactFilter& Filter(const Simulation& sim) {
-  for (const auto& f : sim.potential().step_filters()) {
-    if (auto* m = dynamic_cast<const ContactFilter*>(f.get())) return *m;
-  }
-  throw std::logic_error("no contact filter");
+// The scene's contact state, through the effect that owns it.
+const ContactState& Contact(const Simulation& sim) {
+  const ContactEffect* contact = sim.FindEffect<ContactEffect>();
+  if (contact == nullptr) throw std::logic_error("no contact effect");
+  return contact->state();
 }
 
 json Plane(double y, double normal_y) {
@@ -64,7 +64,7 @@ TEST(ObstacleUntil, TheCeilingStopsAndNeverReachesTheParticle) {
   // Stops at y = 0.5 - 0.455 = 0.045, between two steps' times.
   scene["contact"]["obstacles"][0]["until"] = 0.455;
   Simulation sim(Parse(scene, "until.json"), Options());
-  const Obstacle& ceiling = *Filter(sim).obstacles()[0];
+  const Obstacle& ceiling = *Contact(sim).obstacles()[0];
   EXPECT_DOUBLE_EQ(ceiling.ToWorld(Eigen::Vector3d::Zero(), 10.0).y(), -0.455);
   EXPECT_DOUBLE_EQ(ceiling.ToWorld(Eigen::Vector3d::Zero(), 0.2).y(), -0.2);
   EXPECT_EQ(ceiling.VelocityAt(Eigen::Vector3d::Zero(), 0.5).norm(), 0.0);
@@ -330,7 +330,7 @@ TEST(PrescribedStaging, ANodeCeilingPressingABodySolvesAtTheFullStep) {
     failed += !r.converged;
     substepped += r.substeps > 1;
     EXPECT_TRUE(r.retry_reason.empty()) << r.step << " " << r.retry_reason;
-    EXPECT_EQ(Filter(sim).FindPenetration(sim.state().x.data(), sim.state().time), "");
+    EXPECT_EQ(Contact(sim).FindPenetration(sim.state().x.data(), sim.state().time), "");
   }
   EXPECT_EQ(failed, 0);
   EXPECT_EQ(substepped, 0);
@@ -361,11 +361,11 @@ TEST(MovingBoundary, NotReachedIsItsOwnFailureAndNeverPenetrates) {
     const StepReport r = sim.Step();
     EXPECT_FALSE(r.converged);
     EXPECT_EQ(r.status.rfind("moving boundary not reached", 0), 0u) << r.status;
-    const ContactFilter& filter = Filter(sim);
-    const double tau = filter.obstacle_time();
+    const ContactState& contact = Contact(sim);
+    const double tau = contact.obstacle_time();
     EXPECT_NEAR(tau, sim.state().time - sim.state().boundary_lag, 1e-15);
     EXPECT_GT(sim.state().boundary_lag, 0.0);
-    EXPECT_EQ(filter.FindPenetration(sim.state().x.data(), tau), "");
+    EXPECT_EQ(contact.FindPenetration(sim.state().x.data(), tau), "");
     EXPECT_GT(sim.state().x[1], 0.0);
     EXPECT_LT(sim.state().x[1], 0.01 - tau);
   }
@@ -413,7 +413,7 @@ TEST(TextbookSectionSix, StoppingCeilingAndPerContactFrictionAtTheFullStep) {
     failed += !r.converged;
     substepped += r.substeps > 1;
     EXPECT_GT(r.diagnostics[min_j], 0.0) << "step " << r.step;
-    ASSERT_EQ(Filter(sim).FindPenetration(sim.state().x.data(), sim.state().time), "")
+    ASSERT_EQ(Contact(sim).FindPenetration(sim.state().x.data(), sim.state().time), "")
         << "step " << r.step;
   }
   EXPECT_EQ(failed, 0);

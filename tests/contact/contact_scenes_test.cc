@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "contact/contact_filter.h"
+#include "contact/contact_effect.h"
 #include "core/input_error.h"
 #include "energies/effect_registry.h"
 #include "geometry/point_triangle.h"
@@ -40,9 +40,9 @@ ProbeRecord g_probe;
 
 class GapProbe : public StepFilter {
  public:
-  explicit GapProbe(const ContactFilter* filter) : filter_(filter) {}
+  explicit GapProbe(const ContactState* contact) : contact_(contact) {}
   void OnAccepted(const double* x) override {
-    const double gap = filter_->MinDistance(x, std::numeric_limits<double>::infinity());
+    const double gap = contact_->MinDistance(x, std::numeric_limits<double>::infinity());
     if (std::isnan(gap)) g_probe.nan = true;
     g_probe.min_gap = std::min(g_probe.min_gap, gap);
     ++g_probe.accepted;
@@ -52,7 +52,7 @@ class GapProbe : public StepFilter {
   bool IsFeasible(const double*) const override { return true; }
 
  private:
-  const ContactFilter* filter_;
+  const ContactState* contact_;
 };
 
 // The tests' registry: the defaults plus the gap probe.
@@ -61,12 +61,9 @@ const EffectRegistry& TestEffects() {
     auto* registry = new EffectRegistry(MakeDefaultEffects());
     registry->Register("gap_probe", "test: records gaps at accepted iterates",
                        [](TermBuilder& builder, const json&) {
-                         const ContactFilter* filter = nullptr;
-                         for (const auto& f : builder.potential()->step_filters()) {
-                           if (auto* m = dynamic_cast<const ContactFilter*>(f.get())) filter = m;
-                         }
-                         if (filter == nullptr) throw std::logic_error("gap_probe needs contact");
-                         builder.AddStepFilter(std::make_unique<GapProbe>(filter));
+                         const ContactEffect* contact = builder.FindEffect<ContactEffect>();
+                         if (contact == nullptr) throw std::logic_error("gap_probe needs contact");
+                         builder.AddStepFilter(std::make_unique<GapProbe>(&contact->state()));
                          return std::string("gap probe");
                        });
     return registry;
@@ -94,11 +91,11 @@ Scene LoadWithProbe(const std::string& name_or_json, bool is_json = false) {
   return scene;
 }
 
-const ContactFilter& Filter(const Simulation& sim) {
-  for (const auto& f : sim.potential().step_filters()) {
-    if (auto* m = dynamic_cast<const ContactFilter*>(f.get())) return *m;
-  }
-  throw std::logic_error("no contact filter");
+// The scene's contact state, through the effect that owns it.
+const ContactState& Contact(const Simulation& sim) {
+  const ContactEffect* contact = sim.FindEffect<ContactEffect>();
+  if (contact == nullptr) throw std::logic_error("no contact effect");
+  return contact->state();
 }
 
 struct SceneCase {
@@ -124,7 +121,7 @@ TEST_P(ContactScenes, NoPenetrationAtAnyAcceptedIterate) {
   options.optimizer.max_iterations = c.optimizer == "newton" ? 500 : 20000;
   g_probe = ProbeRecord{};
   Simulation sim(scene, options);
-  const ContactFilter& filter = Filter(sim);
+  const ContactState& contact = Contact(sim);
   // The contact filter's diagnostics (an elastic solid adds its own before them).
   const std::vector<std::string> names = sim.DiagnosticNames();
   const auto min_distance = std::find(names.begin(), names.end(), "min_distance");
@@ -143,7 +140,7 @@ TEST_P(ContactScenes, NoPenetrationAtAnyAcceptedIterate) {
       EXPECT_GT(r.diagnostics[gap], 0.0);
       ++contact_steps;
     }
-    EXPECT_TRUE(filter.FindPenetration(sim.state().x.data(), sim.state().time).empty());
+    EXPECT_TRUE(contact.FindPenetration(sim.state().x.data(), sim.state().time).empty());
   }
   EXPECT_GT(contact_steps, 0) << "the run never reached contact";
   EXPECT_GT(g_probe.accepted, 0);
@@ -238,7 +235,7 @@ TEST(ContactTunnelling, FastParticleIsStoppedByAnEdge) {
       SimulationOptions options = Options(integrator, optimizer, 0.01, 1e-6);
       options.optimizer.max_iterations = 50000;
       Simulation sim(scene, options);
-      ASSERT_EQ(Filter(sim).mesh().edges.size(), 1u);
+      ASSERT_EQ(Contact(sim).mesh().edges.size(), 1u);
       for (int step = 0; step < 5; ++step) {
         const StepReport r = sim.Step();
         EXPECT_LT(sim.state().x[4], 0.0) << optimizer << " " << integrator << " step " << step;
@@ -503,7 +500,7 @@ TEST(ContactEdges, ClothSpringsStayOutsideTheSphere) {
     Scene scene = LoadWithProbe("cloth_sphere");
     g_probe = ProbeRecord{};
     Simulation sim(scene, Options(integrator, "newton", 0, 1e-5));
-    const CollisionMesh& surface = Filter(sim).mesh();
+    const CollisionMesh& surface = Contact(sim).mesh();
     ASSERT_EQ(surface.edges.size(), 261u);  // 9*10*2 structural + 81 diagonals
     double closest = std::numeric_limits<double>::infinity();
     int contact_steps = 0;
@@ -697,7 +694,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
     Scene loaded = LoadWithProbe(scene.dump(), true);
     g_probe = ProbeRecord{};
     Simulation sim(loaded, Options(integrator, "newton", 0, 1e-5));
-    const CollisionMesh& surface = Filter(sim).mesh();
+    const CollisionMesh& surface = Contact(sim).mesh();
     ASSERT_EQ(surface.faces.size(), 25u * 2u);
     // At the start no spring passes within R: only the faces can hold it.
     double spring_clearance = std::numeric_limits<double>::infinity();
@@ -717,7 +714,7 @@ TEST(ContactFaces, SmallSphereDoesNotPassThroughACell) {
       const double d = ClosestFace(surface, sim.state().x.data(), Eigen::Vector3d::Zero());
       closest = std::min(closest, d);
       EXPECT_GT(d, radius) << integrator << " step " << r.step;
-      EXPECT_TRUE(Filter(sim).FindPenetration(sim.state().x.data(), sim.state().time).empty());
+      EXPECT_TRUE(Contact(sim).FindPenetration(sim.state().x.data(), sim.state().time).empty());
       contact_steps += !std::isnan(r.diagnostics[0]);
     }
     EXPECT_GT(contact_steps, 20) << integrator;
@@ -811,8 +808,8 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
     SimulationOptions options = Options(c.integrator, c.optimizer, 0, 1e-5);
     options.optimizer.max_iterations = std::string(c.optimizer) == "newton" ? 500 : 20000;
     Simulation sim(loaded, options);
-    const ContactFilter& filter = Filter(sim);
-    const Obstacle& box = *filter.obstacles()[0];
+    const ContactState& contact = Contact(sim);
+    const Obstacle& box = *contact.obstacles()[0];
     double closest = std::numeric_limits<double>::infinity();
     int contact_steps = 0;
     for (int step = 0; step < c.steps; ++step) {
@@ -820,9 +817,9 @@ TEST(ContactFaces, ClothDrapesOverABoxWithoutCuttingIn) {
       EXPECT_TRUE(r.converged) << c.integrator << " " << c.optimizer << " step " << r.step << " "
                                << r.status;
       const double* x = sim.state().x.data();
-      EXPECT_EQ(BoxConflict(filter.mesh(), x, box, &closest), "")
+      EXPECT_EQ(BoxConflict(contact.mesh(), x, box, &closest), "")
           << c.integrator << " " << c.optimizer << " step " << r.step;
-      EXPECT_EQ(filter.FindPenetration(x, sim.state().time), "");
+      EXPECT_EQ(contact.FindPenetration(x, sim.state().time), "");
       contact_steps += !std::isnan(r.diagnostics[0]);
     }
     EXPECT_GT(contact_steps, 10) << c.integrator << " " << c.optimizer;
@@ -848,9 +845,9 @@ TEST(ContactOptions, EffectOverridesReplaceSceneParameters) {
   SimulationOptions options = Options("backward_euler", "newton", 0.0);
   options.effect_overrides["contact"] = {{"kappa", 1234.5}, {"dhat", 2e-3}};
   Simulation sim(scene, options);
-  EXPECT_EQ(Filter(sim).kappa(), 1234.5);
-  EXPECT_EQ(Filter(sim).d_hat(), 2e-3);
-  EXPECT_FALSE(Filter(sim).adaptive_kappa());
+  EXPECT_EQ(Contact(sim).kappa(), 1234.5);
+  EXPECT_EQ(Contact(sim).d_hat(), 2e-3);
+  EXPECT_FALSE(Contact(sim).adaptive_kappa());
   options.effect_overrides["friction"] = {{"mu", 0.5}};
   try {
     Simulation bad(scene, options);

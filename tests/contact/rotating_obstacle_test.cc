@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "contact/contact_filter.h"
+#include "contact/contact_effect.h"
 #include "contact/obstacles/box_obstacle.h"
 #include "contact/obstacles/plane_obstacle.h"
 #include "contact/obstacles/sphere_obstacle.h"
@@ -242,11 +242,11 @@ Scene Parse(const json& scene) {
   return ParseScene(scene, "rotating.json", options);
 }
 
-const ContactFilter& Filter(const Simulation& sim) {
-  for (const auto& f : sim.potential().step_filters()) {
-    if (auto* m = dynamic_cast<const ContactFilter*>(f.get())) return *m;
-  }
-  throw std::logic_error("no contact filter");
+// The scene's contact state, through the effect that owns it.
+const ContactState& Contact(const Simulation& sim) {
+  const ContactEffect* contact = sim.FindEffect<ContactEffect>();
+  if (contact == nullptr) throw std::logic_error("no contact effect");
+  return contact->state();
 }
 
 // The ground y = 0 turns about the origin at 0.2 rad/s until it is tilted by
@@ -264,7 +264,7 @@ TEST(RotatingObstacle, AFloorThatTiltsAndStopsGivesTheFrictionlessSlide) {
                       {"particle", {{"position", {0.5, 5e-4}}, {"mass", 1}}},
                       {"contact", {{"dhat", 1e-3}, {"kappa", 1e5}, {"obstacles", {ground}}}}};
   Simulation sim(Parse(scene), testing::Options("backward_euler", "newton", 0.0, 1e-6));
-  const Obstacle& floor = *Filter(sim).obstacles()[0];
+  const Obstacle& floor = *Contact(sim).obstacles()[0];
   const Vector3d down_slope(-std::cos(0.2), -std::sin(0.2), 0);
   double v_at_1_5 = 0.0;
   for (int step = 1; step <= 200; ++step) {
@@ -304,7 +304,7 @@ TEST(RotatingObstacle, AFastPaddleInTwoDimensionsLetsNothingThrough) {
                       {"nodes", {{"positions", positions}, {"masses", masses}}},
                       {"contact", {{"dhat", 2e-3}, {"kappa", 1e3}, {"obstacles", {paddle}}}}};
   Simulation sim(Parse(scene), testing::Options("backward_euler", "newton", 0.0, 1e-6));
-  const Obstacle& box = *Filter(sim).obstacles()[0];
+  const Obstacle& box = *Contact(sim).obstacles()[0];
   for (int step = 1; step <= 40; ++step) {
     const StepReport r = sim.Step();
     EXPECT_TRUE(r.converged) << r.step << " " << r.status;
@@ -346,7 +346,7 @@ TEST(RotatingObstacle, APlateSwingingThroughAClothInThreeDimensions) {
                         {"structural", {{"model", "hookean"}, {"stiffness", 100}}}}},
                       {"contact", {{"dhat", 2e-3}, {"kappa", 1e3}, {"obstacles", {plate}}}}};
   Simulation sim(Parse(scene), testing::Options("backward_euler", "newton", 0.0, 1e-6));
-  const Obstacle& box = *Filter(sim).obstacles()[0];
+  const Obstacle& box = *Contact(sim).obstacles()[0];
   double highest = 0.0;
   for (int step = 1; step <= 60; ++step) {
     const StepReport r = sim.Step();
