@@ -151,8 +151,9 @@ class Simulation {
 
   // The local error estimate [m] of the step just taken from `before` with h
   // (Integrator::LocalErrorVector; largest over free nodes), with
-  // `filter_stiff_modes` through the step's own matrix (sim/stiff_mode_filter.h;
-  // variational integrators with inertia only, the others' raw estimate).
+  // `filter_stiff_modes` through the step's own matrix (the step solver's
+  // factorisation when it kept one, else sim/stiff_mode_filter.h; variational
+  // integrators with inertia only, the others' raw estimate).
   double LocalError(const State& before, double h, bool filter_stiff_modes);
 
   // Extra per-step columns contributed by step filters (e.g. contact).

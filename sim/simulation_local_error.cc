@@ -18,17 +18,32 @@ double Simulation::LocalError(const State& before, double h, bool filter_stiff_m
   // An explicit step has no matrix (and its stiff modes are unstable, not
   // damped); quasi-static steps have no inertia and no error to control.
   if (filter_stiff_modes && integrator_.variational && integrator.has_inertia()) {
-    if (!stiff_mode_filter_) {
-      stiff_mode_filter_ =
-          std::make_unique<StiffModeFilter>(potential_.get(), &state_, options_.optimizer);
-    }
     const double raw = Integrator::LargestFreeNodeNorm(state_, error);
-    // A failed filter (a term not evaluable, a failed factorisation) keeps
-    // the raw estimate: the conservative one.
-    const bool filtered = stiff_mode_filter_->Apply(state_.x, &error);
+    // With the step solver's own factorisation of the step matrix when it
+    // kept one (projected_newton), else assembled and factorised here. A
+    // failed filter (a term not evaluable, a failed factorisation) keeps the
+    // raw estimate: the conservative one.
+    Eigen::VectorXd weighted = error, filtered_error;
+    for (int i = 0; i < state_.num_nodes(); ++i) {
+      weighted.segment(state_.dimension * i, state_.dimension) *= state_.mass[i];
+    }
+    const bool reused = solver_ && solver_->SolveWithLastStepMatrix(weighted, &filtered_error);
+    bool filtered = reused;
+    if (reused) {
+      for (int d = 0; d < state_.num_dofs(); ++d) {
+        if (state_.is_free(d / state_.dimension)) error[d] = filtered_error[d];
+      }
+    } else {
+      if (!stiff_mode_filter_) {
+        stiff_mode_filter_ =
+            std::make_unique<StiffModeFilter>(potential_.get(), &state_, options_.optimizer);
+      }
+      filtered = stiff_mode_filter_->Apply(state_.x, &error);
+    }
     VLOG(2) << "local error: raw " << raw << ", filtered "
             << (filtered ? std::to_string(Integrator::LargestFreeNodeNorm(state_, error))
-                         : std::string("failed"));
+                         : std::string("failed"))
+            << (reused ? " (the solver's factorisation)" : "");
   }
   return Integrator::LargestFreeNodeNorm(state_, error);
 }

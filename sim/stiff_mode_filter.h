@@ -22,7 +22,10 @@
 // clamped to >= 0: core/term_hessian.h), so H >= M > 0 on the free DOFs and
 // the solve always has an answer; it is assembled and factorised once per
 // estimate (a sparse Cholesky, solver/sparse_cholesky.h: about one Newton
-// iteration's linear algebra).
+// iteration's linear algebra). Simulation::LocalError uses this class only
+// when the step solver kept no factorisation of its own
+// (StepSolver::SolveWithLastStepMatrix: projected_newton keeps its last
+// Newton iteration's, of an iterate near the result).
 #pragma once
 
 #include <memory>

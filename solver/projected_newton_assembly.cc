@@ -12,6 +12,7 @@
 namespace ipstep {
 
 void ProjectedNewtonSolver::BuildStructure() {
+  factorised_in_solve_ = false;  // the free DOFs and the pattern may change
   const auto start = WallClock::now();
   const int dim = state_->dimension;
   free_index_.assign(state_->num_dofs(), -1);

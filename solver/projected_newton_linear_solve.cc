@@ -40,7 +40,17 @@ void ProjectedNewtonSolver::EnsureAnalyzed() {
 }
 
 bool ProjectedNewtonSolver::FactorizePositiveDefinite() {
-  return analyzed_ && cholesky_->Factorize(hessian_) == SparseCholesky::Result::kSuccess;
+  factorised_in_solve_ =
+      analyzed_ && cholesky_->Factorize(hessian_) == SparseCholesky::Result::kSuccess;
+  return factorised_in_solve_;
+}
+
+bool ProjectedNewtonSolver::SolveWithLastStepMatrix(const Eigen::VectorXd& rhs,
+                                                    Eigen::VectorXd* y) {
+  if (!factorised_in_solve_ || use_cg_) return false;
+  // SolveFactorised returns -A^-1 g.
+  if (!SolveFactorised(-rhs, y)) return false;
+  return true;
 }
 
 bool ProjectedNewtonSolver::ComputeDirection(const Eigen::VectorXd& gradient,

@@ -167,6 +167,7 @@ bool ProjectedNewtonSolver::NewtonDirection(const Eigen::VectorXd& x, Eigen::Vec
 StepSolveResult ProjectedNewtonSolver::Solve(Eigen::VectorXd* x) {
   const auto solve_start = WallClock::now();
   if (built_version_ != potential_->structure_version()) BuildStructure();
+  factorised_in_solve_ = false;
   StepSolveResult result;
   potential_->NotifyAccepted(x->data());
   double energy = 0.0;

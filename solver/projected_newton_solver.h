@@ -68,6 +68,7 @@ class ProjectedNewtonSolver : public StepSolver {
                         const OptimizerOptions& options);
   StepSolveResult Solve(Eigen::VectorXd* x) override;
   std::string LinearSolverDescription() const override;
+  bool SolveWithLastStepMatrix(const Eigen::VectorXd& rhs, Eigen::VectorXd* y) override;
 
   // How a term's Hessian enters the assembled matrix: exact, or projected
   // with eigenvalues clamped or by their magnitude (core/term_hessian.h).
@@ -112,6 +113,8 @@ class ProjectedNewtonSolver : public StepSolver {
     TermMatrix scaled;
     std::vector<const double*> parameters;
   };
+  // A factorisation of this solve's (SolveWithLastStepMatrix).
+  bool factorised_in_solve_ = false;
   void BuildStructure();
   // The term's model Hessian at x, weighted, as `kind`, into its lower
   // triangle at local_values_ + slot_offset_[t].

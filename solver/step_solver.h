@@ -43,6 +43,16 @@ class StepSolver {
   // How the Newton systems are solved, for the programs' run header, e.g.
   // "CHOLMOD LL^T (SUITE_SPARSE), AMD ordering"; empty without one.
   virtual std::string LinearSolverDescription() const { return ""; }
+  // Solves A y = rhs with the positive definite step matrix A that the last
+  // Solve factorised (the projected Hessian of an iterate near its result),
+  // over the free DOFs of full-length vectors (y is 0 on the others). False
+  // when that solve factorised none (solvers without a factorisation: Ceres's,
+  // CG; a solve that took no Newton step).
+  virtual bool SolveWithLastStepMatrix(const Eigen::VectorXd& rhs, Eigen::VectorXd* y) {
+    (void)rhs;
+    (void)y;
+    return false;
+  }
   void set_iteration_sink(IterationSink sink) { sink_ = std::move(sink); }
 
  protected:
