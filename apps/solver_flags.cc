@@ -65,11 +65,8 @@ namespace {
 void RequireApplicableFlags(const OptimizerOptions& p) {
   for (const OptionRow<OptimizerOptions>& row : OptimizerOptionTable()) {
     if (!row.applies || row.flag.empty() || FlagIsDefault(row.flag.c_str())) continue;
-    std::string why = row.applies(p);
-    if (why.empty()) continue;
-    const size_t at = why.rfind("optimizer=");
-    if (at != std::string::npos) why.insert(at, "--");
-    throw InputError("flag", "--" + row.flag, why);
+    const std::string why = row.applies(p, "--");
+    if (!why.empty()) throw InputError("flag", "--" + row.flag, why);
   }
 }
 

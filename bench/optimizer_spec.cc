@@ -89,7 +89,7 @@ OptimizerSpec ParseOptimizerSpec(const std::string& text, double tolerance) {
     }
     const OptionRow<OptimizerOptions>& row = *FindOption(OptimizerOptionTable(), found->second);
     if (row.applies) {
-      const std::string why = row.applies(spec.options);
+      const std::string why = row.applies(spec.options, "");
       if (!why.empty()) throw InputError("optimizer spec", text, key + " " + why);
     }
     try {

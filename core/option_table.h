@@ -53,8 +53,11 @@ struct OptionRow {
   // value is not a plain field (effect overrides).
   std::function<OptionValue(const Options& options)> get;
   // "" or why the option, given, does not apply to `options` ("applies to
-  // newton, dogleg, gauss_newton and projected_newton, not to optimizer=lbfgs").
-  std::function<std::string(const Options& options)> applies;
+  // newton, dogleg, gauss_newton and projected_newton, not to optimizer=lbfgs"),
+  // with the options it names spelled after `prefix`: "" for the library's
+  // and Python's names, "--" for the programs' flags ("not to
+  // --optimizer=lbfgs").
+  std::function<std::string(const Options& options, const std::string& prefix)> applies;
 };
 
 template <class Options>
@@ -133,7 +136,9 @@ OptionTable<Outer> LiftOptions(const OptionTable<Inner>& rows, Inner Outer::*mem
     }
     if (row.applies) {
       const auto applies = row.applies;
-      r.applies = [applies, member](const Outer& outer) { return applies(outer.*member); };
+      r.applies = [applies, member](const Outer& outer, const std::string& prefix) {
+        return applies(outer.*member, prefix);
+      };
     }
     lifted.push_back(std::move(r));
   }

@@ -10,8 +10,8 @@ OptionTable<IntegratorOptions> Build() {
       std::string("backward_euler"), "backward_euler | newmark | quasi_static | symplectic_euler");
   BindField(&IntegratorOptions::name, &name);
   t.push_back(name);
-  const auto newmark_only = [](const IntegratorOptions& o) -> std::string {
-    return o.name == "newmark" ? "" : "applies to integrator=newmark only";
+  const auto newmark_only = [](const IntegratorOptions& o, const std::string& prefix) {
+    return o.name == "newmark" ? std::string() : "applies to " + prefix + "integrator=newmark only";
   };
   OptionRow<IntegratorOptions> beta =
       WithRange(MakeOptionRow<IntegratorOptions>("newmark_beta", "IntegratorOptions.newmark_beta",

@@ -191,7 +191,7 @@ void CheckOptionsApply(const SimulationOptions& options, const std::vector<std::
   for (const std::string& name : given) {
     const Row* row = FindOption(SimulationOptionTable(), name);
     if (row == nullptr || !row->applies) continue;
-    const std::string why = row->applies(options);
+    const std::string why = row->applies(options, "");
     // A table's field (tests/apps/flag_names_test.cc counts them as reported).
     if (!why.empty()) throw InputError("options: " + row->field + ": " + why);
   }

@@ -14,9 +14,10 @@ Row Make(const char* name, const char* flag, OptionType type, OptionValue value,
 
 // "" when `options.optimizer` is of `family` (projected_newton also takes the
 // sparse Cholesky's options), else why not.
-std::function<std::string(const OptimizerOptions&)> Family(OptimizerFamily family,
-                                                           bool sparse_cholesky = false) {
-  return [family, sparse_cholesky](const OptimizerOptions& o) -> std::string {
+std::function<std::string(const OptimizerOptions&, const std::string&)> Family(
+    OptimizerFamily family, bool sparse_cholesky = false) {
+  return [family, sparse_cholesky](const OptimizerOptions& o,
+                                   const std::string& prefix) -> std::string {
     const OptimizerFamily given = FamilyOf(o.optimizer);
     if (given == family || (sparse_cholesky && given == OptimizerFamily::kEigenNewton)) return "";
     const char* names = family == OptimizerFamily::kTrustRegion
@@ -25,7 +26,8 @@ std::function<std::string(const OptimizerOptions&)> Family(OptimizerFamily famil
                         : family == OptimizerFamily::kLineSearch
                             ? "lbfgs, bfgs, ncg and gradient_descent"
                             : "projected_newton";
-    return std::string("applies to ") + names + ", not to optimizer=" + OptimizerName(o.optimizer);
+    return std::string("applies to ") + names + ", not to " + prefix +
+           "optimizer=" + OptimizerName(o.optimizer);
   };
 }
 
@@ -146,10 +148,10 @@ OptionTable<OptimizerOptions> Build() {
   projection.set = [](const OptionValue& v, OptimizerOptions* o) {
     o->hessian_projection = ParseHessianProjection(std::get<std::string>(v));
   };
-  projection.applies = [](const OptimizerOptions& o) -> std::string {
+  projection.applies = [](const OptimizerOptions& o, const std::string& prefix) -> std::string {
     if (UsesNewtonModel(o.optimizer)) return "";
-    return std::string("applies to newton, dogleg and projected_newton, not to optimizer=") +
-           OptimizerName(o.optimizer);
+    return "applies to newton, dogleg and projected_newton, not to " + prefix +
+           "optimizer=" + OptimizerName(o.optimizer);
   };
   t.push_back(projection);
   return t;
