@@ -1,6 +1,6 @@
 #include "sim/stiff_mode_filter.h"
 
-#include <cmath>
+#include <vector>
 
 namespace ipstep {
 namespace {
