@@ -28,18 +28,13 @@ double Simulation::LocalError(const State& before, double h, bool filter_stiff_m
       weighted.segment(state_.dimension * i, state_.dimension) *= state_.mass[i];
     }
     const bool reused = solver_ && solver_->SolveWithLastStepMatrix(weighted, &filtered_error);
-    bool filtered = reused;
-    if (reused) {
-      for (int d = 0; d < state_.num_dofs(); ++d) {
-        if (state_.is_free(d / state_.dimension)) error[d] = filtered_error[d];
-      }
-    } else {
-      if (!stiff_mode_filter_) {
-        stiff_mode_filter_ =
-            std::make_unique<StiffModeFilter>(potential_.get(), &state_, options_.optimizer);
-      }
-      filtered = stiff_mode_filter_->Apply(state_.x, &error);
+    if (!reused && !stiff_mode_filter_) {
+      stiff_mode_filter_ =
+          std::make_unique<StiffModeFilter>(potential_.get(), &state_, options_.optimizer);
     }
+    // (Only the free DOFs are read below: the solves leave the others 0.)
+    const bool filtered = reused || stiff_mode_filter_->Solve(state_.x, weighted, &filtered_error);
+    if (filtered) error = filtered_error;
     VLOG(2) << "local error: raw " << raw << ", filtered "
             << (filtered ? std::to_string(Integrator::LargestFreeNodeNorm(state_, error))
                          : std::string("failed"))

@@ -76,22 +76,16 @@ double StepSizeController::ImpactBudget() const { return options_.error_toleranc
 
 double StepSizeController::Clamp(double h) const { return std::clamp(h, min_h_, max_h_); }
 
-double StepSizeController::Ratio(double h, double error, double impact_error,
-                                 double contact_error) const {
-  // In contact (the contact forces make half the estimate or more) the step
-  // gets the absolute budget; r: the error in budgets.
-  const bool impact = std::max(impact_error, contact_error) > 0.0 &&
-                      std::max(impact_error, contact_error) >= 0.5 * error;
-  const double budget = impact ? std::max(Budget(h), ImpactBudget()) : Budget(h);
-  return std::max({error / budget, impact_error / ImpactBudget(), 1e-10});
-}
-
 StepSizeController::Decision StepSizeController::Judge(double h, double error, double impact_error,
                                                        double contact_error) {
   Decision decision;
-  // A vanishing estimate (free flight under Newmark) grows the step as fast as
-  // allowed.
-  const double ratio = Ratio(h, error, impact_error, contact_error);
+  // In contact (the contact forces make half the estimate or more) the step
+  // gets the absolute budget; r: the error in budgets; a vanishing estimate
+  // (free flight under Newmark) grows the step as fast as allowed.
+  const bool impact = std::max(impact_error, contact_error) > 0.0 &&
+                      std::max(impact_error, contact_error) >= 0.5 * error;
+  const double budget = impact ? std::max(Budget(h), ImpactBudget()) : Budget(h);
+  const double ratio = std::max({error / budget, impact_error / ImpactBudget(), 1e-10});
   const double p = order_;
   decision.over_budget = ratio > 1.0;
   if (ratio <= 1.0 || h <= min_h_) {

@@ -87,9 +87,6 @@ class StepSizeController {
 
  private:
   double Clamp(double h) const;
-  // The ratio r of the error to its budget that Judge decides by (accepted
-  // when r <= 1, or at the smallest step); Judge's arguments.
-  double Ratio(double h, double error, double impact_error, double contact_error) const;
   AdaptiveOptions options_;
   int order_;
   double min_h_, max_h_;

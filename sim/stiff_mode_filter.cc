@@ -3,47 +3,35 @@
 #include <vector>
 
 namespace ipstep {
-namespace {
-
-bool SamePattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
-  if (a.rows() != b.rows() || a.nonZeros() != b.nonZeros()) return false;
-  for (int c = 0; c <= a.outerSize(); ++c) {
-    if (a.outerIndexPtr()[c] != b.outerIndexPtr()[c]) return false;
-  }
-  for (int k = 0; k < a.nonZeros(); ++k) {
-    if (a.innerIndexPtr()[k] != b.innerIndexPtr()[k]) return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 StiffModeFilter::StiffModeFilter(IncrementalPotential* potential, const State* state,
                                  const OptimizerOptions& options)
-    : state_(state), assembler_(potential, state, options) {}
+    : potential_(potential), assembler_(potential, state, options) {}
 
-bool StiffModeFilter::Apply(const Eigen::VectorXd& x, Eigen::VectorXd* error) {
+bool StiffModeFilter::Solve(const Eigen::VectorXd& x, const Eigen::VectorXd& rhs,
+                            Eigen::VectorXd* y) {
   if (!assembler_.AssembleHessian(x, ProjectedNewtonSolver::TermHessian::kClamped)) return false;
   const Eigen::SparseMatrix<double>& hessian = assembler_.hessian();
   const std::vector<int>& free = assembler_.free_index();
-  const int dim = state_->dimension;
-  if (!cholesky_ || !SamePattern(hessian, analysed_)) {
-    cholesky_ = SparseCholesky::Create(SparseLibrary::kSuiteSparse,
-                                       ChooseOrdering(dim, static_cast<int>(hessian.rows())));
+  if (!cholesky_ || analysed_version_ != potential_->structure_version()) {
+    cholesky_ = SparseCholesky::Create(
+        SparseLibrary::kSuiteSparse,
+        ChooseOrdering(potential_->dimension(), static_cast<int>(hessian.rows())));
     if (!cholesky_->Analyze(hessian)) {
       cholesky_.reset();
       return false;
     }
-    analysed_ = hessian;
+    analysed_version_ = potential_->structure_version();
   }
   if (cholesky_->Factorize(hessian) != SparseCholesky::Result::kSuccess) return false;
-  Eigen::VectorXd rhs(hessian.rows()), filtered;
+  Eigen::VectorXd free_rhs(hessian.rows()), free_y;
   for (int d = 0; d < static_cast<int>(free.size()); ++d) {
-    if (free[d] >= 0) rhs[free[d]] = state_->mass[d / dim] * (*error)[d];
+    if (free[d] >= 0) free_rhs[free[d]] = rhs[d];
   }
-  if (!cholesky_->Solve(rhs, &filtered)) return false;
+  if (!cholesky_->Solve(free_rhs, &free_y)) return false;
+  y->setZero(rhs.size());
   for (int d = 0; d < static_cast<int>(free.size()); ++d) {
-    if (free[d] >= 0) (*error)[d] = filtered[free[d]];
+    if (free[d] >= 0) (*y)[d] = free_y[free[d]];
   }
   return true;
 }

@@ -47,16 +47,19 @@ class StiffModeFilter {
   StiffModeFilter(IncrementalPotential* potential, const State* state,
                   const OptimizerOptions& options);
 
-  // Replaces the free DOFs of `error` (per DOF, the state's layout) by
-  // H(x)^-1 M error. False, with `error` unchanged, when the Hessian cannot be
+  // Solves H(x) y = rhs over the free DOFs of full-length vectors (y is 0 on
+  // the others): StepSolver::SolveWithLastStepMatrix's contract, with H
+  // assembled and factorised at x. False when the Hessian cannot be
   // assembled at x or the factorisation fails.
-  bool Apply(const Eigen::VectorXd& x, Eigen::VectorXd* error);
+  bool Solve(const Eigen::VectorXd& x, const Eigen::VectorXd& rhs, Eigen::VectorXd* y);
 
  private:
-  const State* state_;
+  const IncrementalPotential* potential_;
   ProjectedNewtonSolver assembler_;  // assembles H (no solve)
   std::unique_ptr<SparseCholesky> cholesky_;
-  Eigen::SparseMatrix<double> analysed_;  // the pattern cholesky_ analysed
+  // The potential's structure_version when cholesky_ analysed H's pattern
+  // (the pattern follows the terms: the assembler rebuilds it on a change).
+  int analysed_version_ = -1;
 };
 
 }  // namespace ipstep
