@@ -5,13 +5,21 @@
 // size, ChangedSinceClear, Extend, Missing, Near, the pair-distance part of
 // FindPenetration, AddBarrierGradient, AddBarrierTerms and the friction lag
 // loop; every loop visits the kind's combinations in the order its
-// ForEachCandidate gives them (sums into a gradient keep that order).
+// candidate search gives them (sums into a gradient keep that order).
 //
 // The kind provides (private, with `friend Base;`):
 //   template <class F> void ForEachCandidate(const double* a, const double* b,
 //                                            double grow, const F& f) const;
 //       calls f(pair) for every combination that can come within `grow` over
 //       the motion a -> b (every combination for kinds without a broad phase);
+//       or, for a candidate search that reads the obstacle time or Extend's
+//       region (per-node reach, per-obstacle travel), instead of it:
+//   template <class F> void ForEachCandidateAt(const double* x, double t,
+//                                              double grow, const F& f) const;
+//       the combinations that can be within `grow` at x, obstacle time t;
+//   template <class F> void ForEachCandidateIn(const CandidateRegion& r,
+//                                              const F& f) const;
+//       Extend's candidates in r (r.end set), a superset of those Admits takes;
 //   bool HasFreeNode(const Pair&) const;
 //   double Weight(const Pair&) const;            // the barrier's w
 //   double Distance(const double* x, double t, const Pair&) const;
@@ -36,7 +44,9 @@
 //   int FrictionTerms(const std::vector<FrictionLag>&, const FrictionSettings&,
 //                     IncrementalPotential*) const;
 //       the terms of the lags (default, for SelfFrictionLag: one SelfFriction
-//       term per lag, AddSelfFrictionTerms in contact/self_gap_terms.h).
+//       term per lag, AddSelfFrictionTerms in contact/self_gap_terms.h; for
+//       PrimitiveObstacleFrictionLag: one PrimitiveObstacleFriction term per
+//       lag, contact/primitive_obstacle_friction.h).
 #pragma once
 
 #include <algorithm>
@@ -54,6 +64,7 @@
 #include "contact/barrier.h"
 #include "contact/contact_terms.h"
 #include "contact/pair_set.h"
+#include "contact/primitive_obstacle_friction.h"
 #include "contact/self_gap_terms.h"
 #include "contact/sorted_pairs.h"
 
@@ -120,14 +131,31 @@ class PairKind : public PairSet {
     (void)t;
     return "";
   }
-  // The default friction terms, of 3D self-contact lags.
+  // The default friction terms, of 3D self-contact lags and of 3D faces' and
+  // edges' lags against obstacles.
   int FrictionTerms(const std::vector<SelfFrictionLag>& lags, const FrictionSettings& friction,
                     IncrementalPotential* potential) const {
     return AddSelfFrictionTerms(lags, c_.step, c_.friction, friction, potential);
   }
+  int FrictionTerms(const std::vector<PrimitiveObstacleFrictionLag>& lags,
+                    const FrictionSettings& friction, IncrementalPotential* potential) const {
+    return AddPrimitiveObstacleFrictionTerms(lags, c_.step, c_.friction, friction, potential);
+  }
   // The lagged normal force kappa w (-B'(d)) (times `factor`, a mollifier).
   double NormalForce(const Pair& pair, double d, double factor = 1.0) const {
     return -*c_.kappa * kind().Weight(pair) * factor * BarrierDerivative(d, c_.d_hat);
+  }
+  // The candidates of the loops below, by default the kind's ForEachCandidate:
+  // around x (any obstacle time) and, for Extend, over the region's motion
+  // grown by d_hat + max_reach.
+  template <class F>
+  void ForEachCandidateAt(const double* x, double t, double grow, const F& f) const {
+    (void)t;
+    kind().ForEachCandidate(x, x, grow, f);
+  }
+  template <class F>
+  void ForEachCandidateIn(const CandidateRegion& r, const F& f) const {
+    kind().ForEachCandidate(r.start, r.end, c_.d_hat + r.max_reach, f);
   }
 
   PairSetContext c_;
@@ -144,7 +172,7 @@ bool PairKind<Kind, Pair, Data, FrictionLag>::Extend(const CandidateRegion& regi
   CandidateRegion r = region;
   if (r.end == nullptr) r.end = r.start;
   bool added = false;
-  kind().ForEachCandidate(r.start, r.end, c_.d_hat + r.max_reach, [&](const Pair& pair) {
+  kind().ForEachCandidateIn(r, [&](const Pair& pair) {
     if (!kind().HasFreeNode(pair) || pairs_.Contains(pair)) return;
     Data data{};
     if (kind().Admits(r, pair, &data)) added |= pairs_.Insert(pair, data);
@@ -155,7 +183,7 @@ bool PairKind<Kind, Pair, Data, FrictionLag>::Extend(const CandidateRegion& regi
 template <class Kind, class Pair, class Data, class FrictionLag>
 bool PairKind<Kind, Pair, Data, FrictionLag>::Missing(const double* x) const {
   bool missing = false;
-  kind().ForEachCandidate(x, x, c_.d_hat, [&](const Pair& pair) {
+  kind().ForEachCandidateAt(x, *c_.time, c_.d_hat, [&](const Pair& pair) {
     if (missing || !kind().HasFreeNode(pair)) return;
     if (kind().Distance(x, *c_.time, pair) < c_.d_hat && !pairs_.Contains(pair)) missing = true;
   });
@@ -166,7 +194,7 @@ template <class Kind, class Pair, class Data, class FrictionLag>
 std::string PairKind<Kind, Pair, Data, FrictionLag>::FindPenetration(const double* x,
                                                                      double t) const {
   std::string found;
-  kind().ForEachCandidate(x, x, c_.margin, [&](const Pair& pair) {
+  kind().ForEachCandidateAt(x, t, c_.margin, [&](const Pair& pair) {
     if (!found.empty()) return;
     const double d = kind().Distance(x, t, pair);
     if (d > c_.margin) return;
@@ -180,7 +208,7 @@ std::string PairKind<Kind, Pair, Data, FrictionLag>::FindPenetration(const doubl
 template <class Kind, class Pair, class Data, class FrictionLag>
 void PairKind<Kind, Pair, Data, FrictionLag>::Near(const double* x, double t, double reach,
                                                    double* min_distance, int* count) const {
-  kind().ForEachCandidate(x, x, reach, [&](const Pair& pair) {
+  kind().ForEachCandidateAt(x, t, reach, [&](const Pair& pair) {
     const double d = kind().Distance(x, t, pair);
     if (d < reach) {
       *min_distance = std::min(*min_distance, d);
@@ -193,7 +221,7 @@ template <class Kind, class Pair, class Data, class FrictionLag>
 void PairKind<Kind, Pair, Data, FrictionLag>::AddBarrierGradient(const double* x, double t,
                                                                  double scale,
                                                                  Eigen::VectorXd* g) const {
-  kind().ForEachCandidate(x, x, c_.d_hat, [&](const Pair& pair) {
+  kind().ForEachCandidateAt(x, t, c_.d_hat, [&](const Pair& pair) {
     const auto measured = kind().Measure(x, t, pair);
     if (!(measured.distance > 0.0 && measured.distance < c_.d_hat)) return;
     kind().AddPairBarrierGradient(pair, measured, scale, g);

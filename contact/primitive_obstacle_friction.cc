@@ -4,8 +4,21 @@
 #include <utility>
 
 #include "contact/friction.h"
+#include "geometry/tangent_basis.h"
 
 namespace ipstep {
+
+PrimitiveObstacleFrictionLag LagPrimitiveObstacleFriction(const Obstacle& obstacle, double t,
+                                                          const Eigen::Vector3d& n,
+                                                          const Eigen::Vector3d& point,
+                                                          double normal_force) {
+  PrimitiveObstacleFrictionLag lag;
+  lag.tangents = TangentBasis(n, 3).leftCols<2>();
+  lag.obstacle_velocity = obstacle.VelocityAt(point, t);
+  lag.obstacle = &obstacle;
+  lag.normal_force = normal_force;
+  return lag;
+}
 
 PrimitiveObstacleFriction::PrimitiveObstacleFriction(const StepContext* context,
                                                      const PrimitiveObstacleFrictionLag& lag,

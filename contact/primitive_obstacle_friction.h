@@ -36,6 +36,17 @@ struct PrimitiveObstacleFrictionLag {
   const Obstacle* obstacle = nullptr;  // its friction coefficient (FrictionSettings)
 };
 
+// The lag at obstacle time t of a primitive whose closest point is `point`,
+// with unit normal n (from the obstacle's feature towards the point): the
+// tangent basis of n (TangentBasis, as for nodes against obstacles), the
+// obstacle's velocity at the point (its material point there moves within
+// |omega| d_hat of the one the primitive touches) and the normal force; the
+// caller sets num_nodes, nodes and alpha.
+PrimitiveObstacleFrictionLag LagPrimitiveObstacleFriction(const Obstacle& obstacle, double t,
+                                                          const Eigen::Vector3d& n,
+                                                          const Eigen::Vector3d& point,
+                                                          double normal_force);
+
 class PrimitiveObstacleFriction : public ceres::CostFunction {
  public:
   PrimitiveObstacleFriction(const StepContext* context, const PrimitiveObstacleFrictionLag& lag,
