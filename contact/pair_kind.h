@@ -13,7 +13,8 @@
 //       calls f(pair) for every combination that can come within `grow` over
 //       the motion a -> b (every combination for kinds without a broad phase);
 //       or, for a candidate search that reads the obstacle time or Extend's
-//       region (per-node reach, per-obstacle travel), instead of it:
+//       region (per-node reach, per-obstacle travel), instead of it (the
+//       face-obstacle and box-edge kinds):
 //   template <class F> void ForEachCandidateAt(const double* x, double t,
 //                                              double grow, const F& f) const;
 //       the combinations that can be within `grow` at x, obstacle time t;

@@ -1,6 +1,7 @@
 // One kind of contact pair (node-obstacle, edge-obstacle, face-obstacle,
-// 2D point-edge, 3D point-triangle, 3D edge-edge, ...): the unit the contact
-// state (contact/contact_state.h) is made of. A pair kind implements, once:
+// box-edge, 2D point-edge, 3D point-triangle, 3D edge-edge, ...): the unit the
+// contact state (contact/contact_state.h) is made of. A pair kind implements,
+// once:
 //  * candidates: which pairs of primitives of the collision mesh
 //    (contact/collision_mesh.h) and obstacles can come within d_hat
 //    (Extend, Missing), kept as the kind's active set (sorted, it only grows
@@ -22,8 +23,7 @@
 // pairs, the barrier-term loop and the friction lag loop; the kind writes its
 // candidate search, per-pair distance and derivatives, Extend's rule
 // (Admits), TimeOfImpact and its term factory (SetGap, friction terms); and
-// one line in contact/pair_kinds.cc. A kind that does not fit one Pair type
-// (mesh-obstacle: faces and box edges in one set) implements this interface.
+// one line in contact/pair_kinds.cc.
 #pragma once
 
 #include <cstddef>

@@ -1,9 +1,10 @@
-// Friction of a 3D mesh primitive against an obstacle (the face and box-edge
-// pairs of contact/pairs/mesh_obstacle_pairs.h): IPC's lagged smoothed
-// friction (contact/friction.h, 3D form) of the primitive's closest point,
-// a fixed (lagged) combination of its n nodes (n = 3: a face's barycentric
-// weights w; n = 2: an edge's (1 - s, s)), relative to the obstacle, which
-// translates with velocity v_o (at the lag's time; zero once it stopped):
+// Friction of a 3D mesh primitive against an obstacle (the pairs of
+// contact/pairs/face_obstacle_pairs.h and box_edge_pairs.h): IPC's lagged
+// smoothed friction (contact/friction.h, 3D form) of the primitive's closest
+// point, a fixed (lagged) combination of its n nodes (n = 3: a face's
+// barycentric weights w; n = 2: an edge's (1 - s, s)), relative to the
+// obstacle, which translates with velocity v_o (at the lag's time; zero once
+// it stopped):
 //   v_rel = sum_k alpha_k v_k - v_o,   v_t = T^T v_rel   (T: 3 x 2, lagged),
 //   r = psi(|v_t|) v_t / |v_t|  (FrictionResidual),  loss rho(s) = mu lambda s,
 // so 1/2 rho(|r|^2) = mu lambda f0(|v_t|), and with v_k = v_base + slope

@@ -1,5 +1,6 @@
 // Friction of the 3D face and box-edge pairs against obstacles
-// (contact/pairs/mesh_obstacle_pairs.h, contact/primitive_obstacle_friction.h):
+// (contact/pairs/face_obstacle_pairs.h, box_edge_pairs.h,
+// contact/primitive_obstacle_friction.h):
 //  * the terms of a cloth patch over two boxes (one static, one moving) sum to
 //    IPC's dissipation mu lambda f0(|v_t|) of every face-corner and
 //    edge-box-edge combination within d_hat, found by brute force, with the
@@ -20,7 +21,8 @@
 #include "contact/barrier.h"
 #include "contact/friction.h"
 #include "contact/obstacles/box_obstacle.h"
-#include "contact/pairs/mesh_obstacle_pairs.h"
+#include "contact/pairs/box_edge_pairs.h"
+#include "contact/pairs/face_obstacle_pairs.h"
 #include "core/incremental_potential.h"
 #include "problems/scene_loader.h"
 #include "sim/default_effects.h"
@@ -85,10 +87,14 @@ double Dissipation(double mu, double lambda, const V& n, const V& v_rel, double 
 
 TEST(MeshObstacleFriction, TermsAreTheLaggedDissipationOfEveryPair) {
   PatchOverBoxes s(0.01);
-  MeshObstaclePairs pairs(s.context);
+  FaceObstaclePairs face_pairs(s.context);
+  BoxEdgePairs edge_pairs(s.context);
   const std::vector<double> reach(s.mesh.nodes.size(), 0.0), travel(2, 0.0);
-  ASSERT_TRUE(pairs.Extend(s.x.data(), 0.0, reach, travel));
-  pairs.LagFriction(s.x.data(), 0.0);
+  const CandidateRegion region{s.x.data(), nullptr, &reach, 0.0, &travel};  // at s.time = 0
+  ASSERT_TRUE(face_pairs.Extend(region));
+  ASSERT_TRUE(edge_pairs.Extend(region));
+  face_pairs.LagFriction(s.x.data(), 0.0);
+  edge_pairs.LagFriction(s.x.data(), 0.0);
   // Velocities v = v_base + (x - x_base) with slope 1: every node slides at
   // `slide`, faster than eps_v relative to both boxes.
   StepContext& step = s.potential.context();
@@ -98,7 +104,8 @@ TEST(MeshObstacleFriction, TermsAreTheLaggedDissipationOfEveryPair) {
   FrictionSettings friction;
   friction.mu = 0.4;
   friction.epsilon_v = 1e-3;
-  const int contacts = pairs.AddFrictionTerms(friction, &s.potential);
+  int contacts = face_pairs.AddFrictionTerms(friction, &s.potential);
+  contacts += edge_pairs.AddFrictionTerms(friction, &s.potential);
   const V slide(0.01, 0.004, 0.0);
   std::vector<double> y = s.x;
   for (int node = 0; node < 9; ++node) {
@@ -155,7 +162,9 @@ TEST(MeshObstacleFriction, TermsAreTheLaggedDissipationOfEveryPair) {
   // Moving with each box: no dissipation from its pairs (mu = 0: no terms).
   friction.mu = 0.0;
   IncrementalPotential none(3, 9);
-  EXPECT_EQ(pairs.AddFrictionTerms(friction, &none), 0);
+  EXPECT_EQ(
+      face_pairs.AddFrictionTerms(friction, &none) + edge_pairs.AddFrictionTerms(friction, &none),
+      0);
 }
 
 // A rigid triangle of three 1 kg nodes (stiff springs) d_hat / 2 above the box
