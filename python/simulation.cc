@@ -243,6 +243,10 @@ void BindSimulation(py::module_& m) {
                     "an adaptive run's rejected attempts (error over budget or a failed solve)")
       .def_readonly("over_budget", &RunSummary::over_budget,
                     "an adaptive run's steps taken at min_time_step over their error budget")
+      .def_readonly("contact_kappa", &RunSummary::contact_kappa,
+                    "the barrier stiffness at the end (0 without contact)")
+      .def_readonly("contact_kappa_adaptive", &RunSummary::contact_kappa_adaptive,
+                    "whether it adapted (it then follows the step size)")
       .def_readonly("iterations", &RunSummary::iterations)
       .def_readonly("evaluations", &RunSummary::evaluations)
       .def_readonly("max_step_iterations", &RunSummary::max_step_iterations)

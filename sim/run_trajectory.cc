@@ -7,6 +7,7 @@
 
 #include <glog/logging.h>
 
+#include "contact/contact_effect.h"
 #include "core/input_error.h"
 #include "core/input_limits.h"
 #include "core/scoped_timer.h"
@@ -123,6 +124,10 @@ class StepRecorder {
     RunSummary& run = *run_;
     run.wall_seconds = SecondsSince(start_);
     run.energy_scale = rule_.EnergyScale(sim_->state().time - rule_.start_time(), work_);
+    if (const ContactEffect* contact = sim_->FindEffect<ContactEffect>()) {
+      run.contact_kappa = contact->state().kappa();
+      run.contact_kappa_adaptive = contact->state().adaptive_kappa();
+    }
     switch (run.termination) {
       case RunTermination::kCompleted:
         run.message = "completed " + std::to_string(run.steps_done) + " steps";

@@ -87,6 +87,15 @@ struct RunSummary {
   std::string divergence;     // why (sim/divergence.h)
   RunTermination termination = RunTermination::kCompleted;
   std::string message;  // one line: how the run ended
+  // Contact (the contact effect): the barrier stiffness kappa at the end of
+  // the run, and whether it is adaptive (contact/adaptive_kappa.h: then it
+  // follows the step size, kappa_min ~ m / (w_U / w_I) ~ m / h^2, so runs at
+  // different steps or error tolerances simulate different barriers and their
+  // errors against one reference include that difference; a fixed
+  // contact.kappa, --contact_kappa, makes them comparable). 0 and false
+  // without contact.
+  double contact_kappa = 0.0;
+  bool contact_kappa_adaptive = false;
 
   double iterations_per_step() const {
     return steps_done > 0 ? static_cast<double>(iterations) / steps_done : 0.0;

@@ -119,6 +119,43 @@ TEST(AdaptiveStepping, DropTakesLargeStepsInFlightAndSmallOnesAtTheImpact) {
   EXPECT_GT(r.run.rejected, 0);
 }
 
+// The run reports the barrier stiffness it ended with. An adaptive kappa
+// (contact/adaptive_kappa.h) follows the step, kappa_min ~ m / h^2: the drop
+// without its fixed kappa = 1e5 ends at different stiffnesses for h = 0.01 s
+// and 0.0025 s, so two runs at different steps simulate different barriers
+// (why accuracy comparisons on contact scenes fix kappa: docs/benchmarks.md
+// "Contact accuracy"); with kappa given, every run has that one.
+TEST(AdaptiveStepping, ContactStiffnessIsReportedAndAnAdaptiveOneFollowsTheStep) {
+  SceneLoadOptions load;
+  load.extra_effects = DefaultEffects().UserNames();
+  Scene fixed = LoadScene("drop", load);
+  Scene adaptive = fixed;
+  ASSERT_EQ(adaptive.effect_parameters.at("contact").erase("kappa"), 1u);
+  std::vector<double> kappas;
+  for (double h : {0.01, 0.0025}) {
+    for (const Scene* scene : {&fixed, &adaptive}) {
+      SimulationOptions options = Options("newmark", "newton", h, 1e-5);
+      options.steps = static_cast<int>(std::lround(0.4 / h));  // through the impact at 0.33 s
+      Simulation sim(*scene, options);
+      const RunSummary run = RunTrajectory(sim);
+      ASSERT_EQ(run.termination, RunTermination::kCompleted) << run.message;
+      EXPECT_EQ(run.contact_kappa_adaptive, scene == &adaptive);
+      if (scene == &fixed) {
+        EXPECT_EQ(run.contact_kappa, 1e5);
+      } else {
+        kappas.push_back(run.contact_kappa);
+      }
+    }
+  }
+  ASSERT_EQ(kappas.size(), 2u);
+  EXPECT_GT(kappas[1], 4.0 * kappas[0]) << kappas[0] << " at h = 0.01 s, " << kappas[1];
+  // Without contact there is no stiffness to report.
+  Simulation free_fall(testing::OscillatorScene(), Options("newmark", "newton", 0.1, 1e-5));
+  const RunSummary none = RunTrajectory(free_fall);
+  EXPECT_EQ(none.contact_kappa, 0.0);
+  EXPECT_FALSE(none.contact_kappa_adaptive);
+}
+
 TEST(StepSizeController, AcceptsWithinBudgetRejectsAndShrinksOverIt) {
   AdaptiveOptions options;
   options.error_tolerance = 1e-3;
