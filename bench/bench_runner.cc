@@ -1,17 +1,11 @@
 #include "bench/bench_runner.h"
-#include "bench/commit.h"
+#include "apps/commit.h"
 #include "sim/default_effects.h"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -20,6 +14,7 @@
 #include "core/parse_number.h"
 #include "core/scoped_timer.h"
 #include "energies/effect_registry.h"
+#include "io/reference_file.h"
 #include "problems/scene_loader.h"
 #include "sim/run_trajectory.h"
 
@@ -49,61 +44,6 @@ double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-// The cache file of a reference key: FNV-1a of the key (the key itself is the
-// file's first line, checked on reading).
-std::string CacheFile(const std::string& directory, const std::string& key) {
-  uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
-  char name[40];
-  std::snprintf(name, sizeof(name), "ref_%016llx.txt", static_cast<unsigned long long>(hash));
-  return (std::filesystem::path(directory) / name).string();
-}
-
-bool ReadReference(const std::string& file, const std::string& key, ReferenceSolution* out) {
-  std::ifstream in(file);
-  std::string line;
-  if (!in || !std::getline(in, line) || line != key) return false;
-  int ok = 0, exact = 0;
-  long size = 0;
-  if (!(in >> ok >> exact >> out->dt >> out->error >> out->steps >> out->failed_steps >> size) ||
-      size < 0) {
-    return false;
-  }
-  std::getline(in, line);  // end of the numbers' line
-  if (!std::getline(in, out->description)) return false;
-  out->ok = ok != 0;
-  out->exact = exact != 0;
-  out->x.resize(size);
-  for (long i = 0; i < size; ++i) {
-    if (!(in >> out->x[i])) return false;
-  }
-  return true;
-}
-
-void WriteReference(const std::string& file, const std::string& key,
-                    const ReferenceSolution& reference) {
-  std::error_code error;
-  std::filesystem::create_directories(std::filesystem::path(file).parent_path(), error);
-  const std::string temporary = file + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary);
-    if (!out) return;  // no cache: the sweep goes on, the reference is in memory
-    out << key << '\n'
-        << (reference.ok ? 1 : 0) << ' ' << (reference.exact ? 1 : 0) << ' '
-        << std::setprecision(17) << reference.dt << ' ' << reference.error << ' ' << reference.steps
-        << ' ' << reference.failed_steps << ' ' << reference.x.size() << '\n'
-        << reference.description << '\n';
-    for (Eigen::Index i = 0; i < reference.x.size(); ++i) out << reference.x[i] << '\n';
-    out.close();
-    if (!out) {  // e.g. a full disk: no cache file rather than a truncated one
-      std::filesystem::remove(temporary, error);
-      return;
-    }
-  }
-  std::filesystem::rename(temporary, file, error);
-  if (error) std::filesystem::remove(temporary, error);
 }
 
 }  // namespace
@@ -183,10 +123,10 @@ const ReferenceSolution& ReferenceCache::Get(const std::string& scene, int grid_
   std::snprintf(key_text, sizeof(key_text), "%s|%d|%s|%.17g|%.17g|%s|%.17g|%s", scene.c_str(),
                 grid_size, method.c_str(), dt_min, t_end, optimizer_.c_str(), tolerance_,
                 IPSTEP_COMMIT);
-  const std::string file = directory_.empty() ? "" : CacheFile(directory_, key_text);
+  const std::string file = directory_.empty() ? "" : ReferenceFileName(directory_, key_text);
   if (!file.empty()) {
     ReferenceSolution stored;
-    if (ReadReference(file, key_text, &stored)) {
+    if (ReadReferenceFile(file, key_text, &stored)) {
       return cache_.emplace(key, std::move(stored)).first->second;
     }
   }
@@ -209,7 +149,7 @@ const ReferenceSolution& ReferenceCache::Get(const std::string& scene, int grid_
     reference.description = std::string("FAILED: ") + e.what();
   }
   if (optimizer_.find('+') != std::string::npos) reference.description += " (" + optimizer_ + ")";
-  if (!file.empty()) WriteReference(file, key_text, reference);
+  if (!file.empty()) WriteReferenceFile(file, key_text, reference);
   return cache_.emplace(key, std::move(reference)).first->second;
 }
 
