@@ -123,33 +123,31 @@ const ReferenceSolution& ReferenceCache::Get(const std::string& scene, int grid_
   std::snprintf(key_text, sizeof(key_text), "%s|%d|%s|%.17g|%.17g|%s|%.17g|%s", scene.c_str(),
                 grid_size, method.c_str(), dt_min, t_end, optimizer_.c_str(), tolerance_,
                 IPSTEP_COMMIT);
-  const std::string file = directory_.empty() ? "" : ReferenceFileName(directory_, key_text);
-  if (!file.empty()) {
-    ReferenceSolution stored;
-    if (ReadReferenceFile(file, key_text, &stored)) {
-      return cache_.emplace(key, std::move(stored)).first->second;
+  // Computed once by the shards that ask at once (io/reference_file.h).
+  ReferenceSolution reference = CachedReference(directory_, key_text, [&] {
+    ++computed_;
+    const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
+    SceneLoadOptions load;
+    load.grid_size = grid_size;
+    const EffectRegistry& effects = effects_ ? *effects_ : DefaultEffects();
+    load.extra_effects = effects.UserNames();
+    SimulationOptions base;
+    base.effects = &effects;
+    ReferenceOptions options;
+    options.integrator = method;
+    options.optimizer = spec.options;
+    ReferenceSolution computed;
+    try {
+      computed = ComputeReference(LoadScene(scene, load), base, options, dt_min, t_end);
+    } catch (const std::exception& e) {
+      computed.ok = false;
+      computed.description = std::string("FAILED: ") + e.what();
     }
-  }
-  ++computed_;
-  const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
-  SceneLoadOptions load;
-  load.grid_size = grid_size;
-  const EffectRegistry& effects = effects_ ? *effects_ : DefaultEffects();
-  load.extra_effects = effects.UserNames();
-  SimulationOptions base;
-  base.effects = &effects;
-  ReferenceOptions options;
-  options.integrator = method;
-  options.optimizer = spec.options;
-  ReferenceSolution reference;
-  try {
-    reference = ComputeReference(LoadScene(scene, load), base, options, dt_min, t_end);
-  } catch (const std::exception& e) {
-    reference.ok = false;
-    reference.description = std::string("FAILED: ") + e.what();
-  }
-  if (optimizer_.find('+') != std::string::npos) reference.description += " (" + optimizer_ + ")";
-  if (!file.empty()) WriteReferenceFile(file, key_text, reference);
+    if (optimizer_.find('+') != std::string::npos) {
+      computed.description += " (" + optimizer_ + ")";
+    }
+    return computed;
+  });
   return cache_.emplace(key, std::move(reference)).first->second;
 }
 

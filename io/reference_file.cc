@@ -1,5 +1,7 @@
 #include "io/reference_file.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -109,6 +111,41 @@ void WriteReferenceFile(const std::string& file, const std::string& key,
   }
   std::filesystem::rename(temporary, file, error);
   if (error) std::filesystem::remove(temporary, error);
+}
+
+ReferenceSolution CachedReference(const std::string& directory, const std::string& key,
+                                  const std::function<ReferenceSolution()>& compute,
+                                  bool* computed) {
+  if (computed != nullptr) *computed = false;
+  ReferenceSolution reference;
+  const std::string file = directory.empty() ? "" : ReferenceFileName(directory, key);
+  if (!file.empty() && ReadReferenceFile(file, key, &reference)) return reference;
+  int lock = -1;
+  if (!file.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    const std::string lock_file = file.substr(0, file.size() - 4) + ".lock";  // not ".txt"
+    lock = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock >= 0 && ::flock(lock, LOCK_EX) != 0) {
+      ::close(lock);
+      lock = -1;
+    }
+    // Another process may have written it while this one waited.
+    if (lock >= 0 && ReadReferenceFile(file, key, &reference)) {
+      ::close(lock);  // releases the lock
+      return reference;
+    }
+  }
+  if (computed != nullptr) *computed = true;
+  try {
+    reference = compute();
+  } catch (...) {
+    if (lock >= 0) ::close(lock);
+    throw;
+  }
+  if (!file.empty()) WriteReferenceFile(file, key, reference);
+  if (lock >= 0) ::close(lock);
+  return reference;
 }
 
 }  // namespace ipstep

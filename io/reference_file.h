@@ -7,6 +7,7 @@
 // a reader never sees half a file.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "sim/reference.h"
@@ -25,5 +26,17 @@ bool ReadReferenceFile(const std::string& file, const std::string& key, Referenc
 // the caller has the reference in memory.
 void WriteReferenceFile(const std::string& file, const std::string& key,
                         const ReferenceSolution& reference);
+
+// The reference for `key`: read from its file in `directory` if that holds
+// it, else compute()'d and written there (`computed`, if not null, says
+// which). Processes that ask for one key at once compute it once: the first
+// holds an exclusive lock (flock) on ref_<hash>.lock beside the file until it
+// has written the file, and the others wait for it, then read the file. The
+// lock file stays (empty); a lock that cannot be had (a folder that cannot be
+// written, a file system without flock) is not waited for. An empty
+// `directory`: compute() alone, no file.
+ReferenceSolution CachedReference(const std::string& directory, const std::string& key,
+                                  const std::function<ReferenceSolution()>& compute,
+                                  bool* computed = nullptr);
 
 }  // namespace ipstep
