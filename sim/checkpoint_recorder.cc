@@ -1,6 +1,7 @@
 #include "sim/checkpoint_recorder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace ipstep {
@@ -39,7 +40,9 @@ void CheckpointRecorder::AfterStep() {
   const State& end = sim_->state();
   const double h = end.time - start_time_;
   if (!(h > 0.0)) return;
-  const double slack = 1e-9 * h;
+  // Round-off: a fixed run's time is a sum of its steps and may end a little
+  // short of its last checkpoint (64000 steps of 1/64000 s end at 1 - 9e-13 s).
+  const double slack = 1e-9 * (h + std::abs(end.time));
   while (!complete() && times_[positions_.size()] <= end.time + slack) {
     double s = (times_[positions_.size()] - start_time_) / h;
     if (s >= 1.0 - 1e-9) {

@@ -25,10 +25,12 @@ double MaxNodeDistance(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
   if (x.size() != y.size() || x.size() == 0) return std::nan("");
   double worst = 0.0;
   for (int i : nodes) {
-    worst = std::max(
-        worst, (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm());
+    const double distance =
+        (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm();
+    if (!std::isfinite(distance)) return std::nan("");  // std::max would drop a NaN
+    worst = std::max(worst, distance);
   }
-  return std::isfinite(worst) ? worst : std::nan("");
+  return worst;
 }
 
 std::vector<int> FreeNodes(const State& state) {

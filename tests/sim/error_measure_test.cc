@@ -146,6 +146,39 @@ TEST(CheckpointRecorder, ReproducesAParabolaInsideSteps) {
   }
 }
 
+// A long fixed run's time, a sum of its steps, ends short of its end by
+// round-off (64000 steps of 1/64000 s: 1 - 9e-13 s): the last checkpoint is
+// still its end state.
+TEST(CheckpointRecorder, TakesTheLastCheckpointAtTheEndOfALongRun) {
+  Scene scene;
+  scene.name = scene.source = "test_projectile";
+  scene.positions = {0.0, 0.0};
+  scene.velocities = {1.0, 2.0};
+  scene.masses = {1.0};
+  scene.gravity = {0.0, -9.81};
+  scene.effects = {"gravity"};
+  SimulationOptions options = Options("newmark", "projected_newton", 1.0 / 64000);
+  options.steps = 64000;
+  Simulation sim(scene, options);
+  CheckpointRecorder recorder(CheckpointTimes(0.0, 1.0, 4));
+  RunOptions run_options;
+  recorder.Attach(sim, &run_options);
+  RunTrajectory(sim, run_options);
+  ASSERT_LT(sim.state().time, 1.0);
+  ASSERT_TRUE(recorder.complete());
+  EXPECT_EQ(recorder.positions().back(), sim.state().x);
+}
+
+// A distance that is not finite makes the largest one NaN, wherever it is.
+TEST(ErrorMeasure, MaxNodeDistanceIsNaNForANonFiniteDistance) {
+  const Eigen::Vector4d x(0, 0, 1, 1), y(0, 0, 1, 2);
+  EXPECT_EQ(MaxNodeDistance(x, y, {0, 1}, 2), 1.0);
+  const Eigen::Vector4d nan_first(std::nan(""), 0, 1, 1);
+  EXPECT_TRUE(std::isnan(MaxNodeDistance(nan_first, y, {0, 1}, 2)));
+  const Eigen::Vector4d nan_last(0, 0, std::nan(""), 1);
+  EXPECT_TRUE(std::isnan(MaxNodeDistance(x, nan_last, {0, 1}, 2)));
+}
+
 // An adaptive run is measured like a fixed one; the reference's last
 // checkpoint is its end, and max_position needs checkpoints.
 TEST(ErrorMeasure, AdaptiveRunsAndReferencesWithoutCheckpoints) {
