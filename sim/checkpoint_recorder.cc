@@ -44,12 +44,12 @@ void CheckpointRecorder::AfterStep() {
   // short of its last checkpoint (64000 steps of 1/64000 s end at 1 - 9e-13 s).
   const double slack = 1e-9 * (h + std::abs(end.time));
   while (!complete() && times_[positions_.size()] <= end.time + slack) {
-    double s = (times_[positions_.size()] - start_time_) / h;
-    if (s >= 1.0 - 1e-9) {
+    const double t = times_[positions_.size()];
+    if (t >= end.time - slack) {  // on the step's end
       positions_.push_back(end.x);
       continue;
     }
-    s = std::max(0.0, s);
+    const double s = std::max(0.0, (t - start_time_) / h);
     const double s2 = s * s, s3 = s2 * s;
     positions_.push_back((2 * s3 - 3 * s2 + 1) * start_x_ + ((s3 - 2 * s2 + s) * h) * start_v_ +
                          (-2 * s3 + 3 * s2) * end.x + ((s3 - s2) * h) * end.v);

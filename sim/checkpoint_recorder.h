@@ -6,8 +6,8 @@
 // (x_{n+1}, v_{n+1}): with s = (t_j - t_n) / h,
 //   x(t_j) = (2s^3 - 3s^2 + 1) x_n + (s^3 - 2s^2 + s) h v_n
 //          + (-2s^3 + 3s^2) x_{n+1} + (s^3 - s^2) h v_{n+1}.
-// A checkpoint on a step's end, to round-off (1e-9 of h + t: the time of a
-// run is a sum of its steps), is that step's x exactly.
+// A checkpoint on a step's end, to round-off (within 1e-9 (h + t): the time
+// of a run is a sum of its steps), is that step's x exactly.
 //
 // Limits: the polynomial is the path only as far as the step's end velocities
 // describe it. It reproduces a quadratic exactly and a smooth path to O(h^4)
