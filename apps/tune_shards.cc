@@ -13,6 +13,7 @@
 #include "apps/commit.h"
 #include "apps/shard_files.h"
 #include "core/input_error.h"
+#include "io/csv_fields.h"
 #include "io/reference_file.h"
 #include "solver/optimizer_options.h"
 
@@ -45,16 +46,6 @@ enum Column {
   kOutOfTime,
   kSearch
 };
-
-std::string Quote(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c == '\n' ? ' ' : c;
-  }
-  return quoted + "\"";
-}
 
 std::string Number17(double value) {
   char text[40];
@@ -103,10 +94,12 @@ void CheckConfiguration(const ShardRow& row, const Candidate& c) {
 std::string SearchKey(const std::string& scene, const std::string& measure, bool match_default,
                       const SearchSpace& space) {
   std::string integrators, optimizers;
-  for (const std::string& name : space.integrators)
+  for (const std::string& name : space.integrators) {
     integrators += (integrators.empty() ? "" : "+") + name;
-  for (const std::string& name : space.optimizers)
+  }
+  for (const std::string& name : space.optimizers) {
     optimizers += (optimizers.empty() ? "" : "+") + name;
+  }
   return "scene=" + scene + ";measure=" + measure + ";at=" + Number17(space.t_end) +
          ";dt=" + Number17(space.dt) +
          ";target=" + (match_default ? std::string("match_default") : Number17(space.target)) +
@@ -128,7 +121,7 @@ void WriteRows(const std::vector<Candidate>& rows, const SearchRecord& record, O
            << ',' << c.tolerance << ',' << c.error_tolerance << ',' << c.steps << ',' << c.failed
            << ',' << c.iterations << ',' << c.seconds << ',' << c.error << ',' << c.role << ','
            << c.family << ',' << c.position << ',' << c.shard << ',' << Number17(record.target)
-           << ',' << (record.out_of_time ? 1 : 0) << ',' << Quote(record.search) << '\n';
+           << ',' << (record.out_of_time ? 1 : 0) << ',' << CsvField(record.search) << '\n';
     out->EndRow();
   }
   out->Close();
@@ -142,6 +135,12 @@ MergedSearch ReadShards(const std::string& list, const std::string& search, Sear
                          "' is not an ipstep_tune shard file of this version (its header is "
                          "not '" +
                          CsvHeader() + "')");
+  }
+  if (shards.rows.empty()) {
+    throw InputError("flag", "--merge",
+                     "'" + shards.files.front() +
+                         "' and the others have no rows (every shard "
+                         "writes at least its default row)");
   }
   MergedSearch out;
   out.files = shards.files.size();

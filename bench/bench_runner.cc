@@ -14,6 +14,7 @@
 #include "core/parse_number.h"
 #include "core/scoped_timer.h"
 #include "energies/effect_registry.h"
+#include "io/csv_fields.h"
 #include "io/reference_file.h"
 #include "problems/scene_loader.h"
 #include "sim/run_trajectory.h"
@@ -21,16 +22,6 @@
 namespace ipstep {
 namespace bench {
 namespace {
-
-std::string Quote(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c == '\n' ? ' ' : c;
-  }
-  return quoted + "\"";
-}
 
 std::string Number(double value) {
   if (std::isnan(value)) return "";
@@ -172,19 +163,19 @@ std::string CsvRow(const RunRow& row) {
   const bool diverged = t.status.rfind("diverged", 0) == 0;
   const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
-  out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
-      << ',' << c.integrator << ',' << Quote(c.optimizer) << ',' << Number(c.dt) << ',' << c.steps
-      << ',' << Number(c.dt * c.steps) << ',' << Number(c.tolerance) << ',' << c.repeats << ','
-      << c.warmup << ',' << Number(median) << ',' << Number(min) << ','
+  out << c.id << ',' << CsvField(c.scene) << ',' << c.grid_size << ',' << t.nodes << ','
+      << t.free_dofs << ',' << c.integrator << ',' << CsvField(c.optimizer) << ',' << Number(c.dt)
+      << ',' << c.steps << ',' << Number(c.dt * c.steps) << ',' << Number(c.tolerance) << ','
+      << c.repeats << ',' << c.warmup << ',' << Number(median) << ',' << Number(min) << ','
       << Number(ran ? median / (c.dt * steps) : std::nan("")) << ','
       << Number(ran ? 1e3 * median / steps : std::nan("")) << ',' << Number(t.setup_seconds) << ','
       << Number(static_cast<double>(t.iterations) / steps) << ',' << t.max_step_iterations << ','
       << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
-      << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
+      << Number(t.worst_residual) << ',' << t.steps_done << ',' << CsvField(t.status) << ','
       << Number(row.position_error) << ','
-      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ',' << Quote(row.reference)
-      << ',' << Number(row.reference_dt) << ',' << Number(row.reference_error) << ','
-      << Number(pn ? t.phases.hessian : std::nan("")) << ','
+      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ','
+      << CsvField(row.reference) << ',' << Number(row.reference_dt) << ','
+      << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
       << Number(pn ? t.phases.factorize : std::nan("")) << ','
       << Number(pn ? t.phases.line_search : std::nan("")) << ','
       << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard << ','

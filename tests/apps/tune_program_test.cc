@@ -113,7 +113,15 @@ TEST_F(TuneProgram, AMissingOrDuplicatedShardOrAnotherSearchIsRefused) {
                        (dir_ / "s").string() + "/shard*.csv'",
                    "--merge", "is from another search");
   ExpectInputError(kSearch + " --merge=" + (dir_ / "none*.csv").string(), "--merge", "");
-  // A shard file of another program (ipstep_bench's header).
+  // A shard file without rows (a header only), and one of another program
+  // (ipstep_bench's header).
+  {
+    std::ifstream in(Shard("s", 0));
+    std::string header;
+    std::getline(in, header);
+    std::ofstream(dir_ / "empty.csv") << header << "\n";
+  }
+  ExpectInputError(kSearch + " --merge=" + (dir_ / "empty.csv").string(), "--merge", "no rows");
   std::ofstream(dir_ / "bench.csv") << "id,shard\n0,0/1\n";
   ExpectInputError(kSearch + " --merge=" + (dir_ / "bench.csv").string(), "--merge",
                    "not an ipstep_tune shard file");
