@@ -83,6 +83,11 @@ const std::vector<UnmappedName>& UnmappedNames() {
       {"options: ReferenceOptions.refinement",
        "the programs use the default refinement; the step count it gives is checked by the "
        "programs' own --steps and --t_end ranges"},
+      {"options: ReferenceOptions.checkpoints",
+       "the programs' references record kErrorCheckpoints (sim/error_measure.h), not a flag"},
+      {"options: ReferenceSolution",
+       "the programs compute the reference a measure needs themselves (ipstep_tune's "
+       "--measure)"},
   };
   return names;
 }

@@ -28,6 +28,8 @@ int RunIpstep(int argc, char** argv);
 // ipstep_compare: every integrator x optimiser on one scene, as a table.
 int RunCompare(int argc, char** argv);
 // ipstep_tune: the cheapest configuration that reaches an error (apps/tune_program.cc).
+// Its --shard, --merge and --reference_cache are also ipstep_bench's flags:
+// call RunTune and RunBench (bench/bench_program.h) from different programs.
 int RunTune(int argc, char** argv);
 
 // The same with the effects of `registry` (the overloads above pass

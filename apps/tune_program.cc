@@ -1,23 +1,29 @@
 // RunTune (apps/programs.h), the ipstep_tune program: "this error, at least
 // cost". A small, budgeted search over integrator x optimiser x (fixed h or
 // adaptive tolerance) x solver tolerance for the cheapest run of a scene whose
-// measured error at the end time is within --target_error, against one
-// reference (sim/reference.h); the winner is validated against a reference
-// twice as fine; the Pareto front (cost against error) is printed with the
-// recommended configuration as an ipstep command line.
+// measured error (sim/error_measure.h: at the end time, the largest over the
+// run, or the energy drift) is within --target_error, against one reference
+// (sim/reference.h); the winner is validated against a reference twice as
+// fine; the Pareto front (cost against error) is printed with the recommended
+// configuration as an ipstep command line.
 //   ipstep_tune --scene=cloth --target_error=1e-3
 //   ipstep_tune --scene=cloth --match_default   (target: the default's own error)
-// Search, per integrator x optimiser, coarse to fine, stopping at the first
-// run that meets the target (finer ones only cost more):
+// Sharded like ipstep_bench (apps/tune_shards.h): each shard runs its share of
+// the integrator x optimiser families and writes it to --tune_output; --merge
+// reads the shards back and chooses, times and validates as one search does.
+//   ipstep_tune --scene=cloth --target_error=1e-3 --shard=0/2 --tune_output=out/shard0.csv
+//   ipstep_tune --scene=cloth --target_error=1e-3 --merge='out/shard*.csv'
+// The search (apps/tune_search.h), per integrator x optimiser, coarse to fine,
+// stopping at the first run that meets the target (finer ones only cost more):
 //   fixed h = dt * {2, 1, 1/2, 1/4, 1/8}, with the default solver tolerance and
 //     with one tied to the target (0.1 E / T, as --adaptive sets it);
 //   --adaptive with E = target * {1, 1/3, 1/10}.
-// Cost: the run's wall time (sim/run_trajectory.h), on this machine.
+// Cost (--tune_cost): the run's wall time (sim/run_trajectory.h), on this
+// machine, or its solver iterations.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <iterator>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,100 +34,70 @@
 #include "apps/contact_flags.h"
 #include "apps/program_main.h"
 #include "apps/programs.h"
+#include "apps/shard_files.h"
 #include "apps/solver_flags.h"
+#include "apps/tune_search.h"
+#include "apps/tune_shards.h"
 #include "core/input_error.h"
 #include "io/output_file.h"
 #include "problems/scene_loader.h"
+#include "sim/error_measure.h"
 #include "sim/reference.h"
-#include "sim/run_trajectory.h"
-#include "sim/simulation.h"
-#include "sim/step_size_controller.h"
 
 DEFINE_double(target_error, 0.0,
-              "The error to reach at the end time, > 0: [m] for "
-              "--measure=position, in energy scales for --measure=energy");
+              "The error to reach, > 0: [m] for --measure=position and max_position, in energy "
+              "scales for --measure=energy");
 DEFINE_bool(match_default, false,
             "Instead of --target_error: the measured error of the default configuration "
             "(backward_euler + newton at the scene's step and the default tolerance), to find "
             "what reaches it at least cost");
 DEFINE_string(measure, "position",
               "position: the largest distance of a free node from the reference at the end "
-              "time [m]; energy: the largest energy drift over the run [energy scales, "
+              "time [m]; max_position: the largest such distance over the run, at 20 times "
+              "T j / 20 [m]; energy: the largest energy drift over the run [energy scales, "
               "sim/divergence.h], no reference needed");
 DEFINE_double(at, 0.0, "End time [s], > 0; default: the scene's time_step x steps");
 DEFINE_string(tune_integrators, "newmark,backward_euler", "Integrators to search");
 DEFINE_string(tune_optimizers, "newton,projected_newton", "Optimisers to search");
 DEFINE_double(budget_seconds, 240.0,
               "Stop searching after this much wall time [s] (the reference included), in (0, "
-              "1e6]; the best found so far is reported");
-DEFINE_string(tune_output, "", "CSV file: one row per run of the search");
+              "1e6]; the best found so far is reported. Each shard has its own");
+DEFINE_string(tune_cost, "seconds",
+              "The cost of a run for the Pareto front and the pick: seconds (its wall time) or "
+              "iterations (its solver iterations: the same on every machine and run)");
+DEFINE_string(tune_output, "",
+              "CSV file: one row per run of the search (with --shard: the shard's runs, for "
+              "--merge)");
+DEFINE_string(shard, "",
+              "i/N: run only the integrator x optimiser families f with f % N == i and write "
+              "them to --tune_output (no pick); --merge chooses");
+DEFINE_string(merge, "",
+              "Comma-separated CSV files or glob patterns of a sharded search (every shard "
+              "once; the same scene and target flags): choose, time and validate as the "
+              "unsharded search does");
+DEFINE_string(reference_cache, "",
+              "Folder the references are kept in and read from, shared by the shards (one file "
+              "per reference, keyed by the flags, the end time and the commit); default: "
+              "'references' beside --tune_output with --shard, beside the shard files with "
+              "--merge, none otherwise; 'none': no files");
 
 namespace ipstep {
 namespace {
 
-// The fixed steps of the search, coarse to fine, in units of the scene's step.
-constexpr double kStepFactors[] = {2.0, 1.0, 0.5, 0.25, 0.125};
+using tune::Candidate;
+
 // With --match_default, "equal error" is equal to about three digits: the
 // target is itself a measurement, and runs that differ from the default only
 // in h or the tolerance often end within round-off of its error (backward
 // Euler on the cloth, whose error is its damped vibration).
 constexpr double kMatchSlack = 1e-3;
 
-struct Candidate {
-  std::string integrator, optimizer;
-  bool adaptive = false;
-  double dt = 0.0;               // fixed runs, and the first step of adaptive ones
-  double tolerance = 0.0;        // solver [m/s]
-  double error_tolerance = 0.0;  // adaptive [m]
-  // results
-  double error = NAN, seconds = NAN;
-  int steps = 0, failed = 0;
-  long iterations = 0;  // solver iterations, rejected attempts included
-  std::string status;
-  // --tune_output: search (a run of the search), pick (the recommended one),
-  // default (backward_euler + newton at the scene's step), validation (the
-  // pick against the finer reference).
-  std::string role = "search";
-};
-
-Candidate Fixed(const std::string& integrator, const std::string& optimizer, double dt,
-                double tolerance) {
-  Candidate c;
-  c.integrator = integrator;
-  c.optimizer = optimizer;
-  c.dt = dt;
-  c.tolerance = tolerance;
-  return c;
-}
-
-std::string CommandLine(const std::string& scene, const Candidate& c, double t_end) {
-  char text[400];
-  if (c.adaptive) {
-    std::snprintf(text, sizeof(text),
-                  "ipstep --scene=%s --integrator=%s --optimizer=%s --adaptive "
-                  "--error_tolerance=%.3g --dt=%.6g --t_end=%.6g",
-                  scene.c_str(), c.integrator.c_str(), c.optimizer.c_str(), c.error_tolerance, c.dt,
-                  t_end);
-  } else {
-    std::snprintf(text, sizeof(text),
-                  "ipstep --scene=%s --integrator=%s --optimizer=%s --dt=%.10g --t_end=%.6g "
-                  "--tolerance=%.3g",
-                  scene.c_str(), c.integrator.c_str(), c.optimizer.c_str(), c.dt, t_end,
-                  c.tolerance);
-  }
-  return text;
-}
-
-std::string Label(const Candidate& c) {
-  char text[200];
-  if (c.adaptive) {
-    std::snprintf(text, sizeof(text), "%s + %s, adaptive E = %.3g m", c.integrator.c_str(),
-                  c.optimizer.c_str(), c.error_tolerance);
-  } else {
-    std::snprintf(text, sizeof(text), "%s + %s, h = %.4g s, tolerance %.3g m/s",
-                  c.integrator.c_str(), c.optimizer.c_str(), c.dt, c.tolerance);
-  }
-  return text;
+// --reference_cache's folder ("" for none); `beside`: a file the default is beside.
+std::string CacheFolder(bool sharded, const std::string& beside) {
+  if (FLAGS_reference_cache == "none") return "";
+  if (!FLAGS_reference_cache.empty()) return FLAGS_reference_cache;
+  if (!sharded) return "";
+  return (std::filesystem::path(beside).parent_path() / "references").string();
 }
 
 int Run(const EffectRegistry& registry) {
@@ -131,9 +107,30 @@ int Run(const EffectRegistry& registry) {
   if (!FLAGS_match_default && (!(FLAGS_target_error > 0.0) || !std::isfinite(FLAGS_target_error))) {
     throw InputError("flag", "--target_error", "give the error to reach, a finite number > 0");
   }
-  if (FLAGS_measure != "position" && FLAGS_measure != "energy") {
-    throw InputError("flag", "--measure",
-                     "must be 'position' or 'energy', got '" + ClipInput(FLAGS_measure) + "'");
+  ErrorMeasure measure = ErrorMeasure::kPosition;
+  if (!ParseErrorMeasure(FLAGS_measure, &measure)) {
+    throw InputError(
+        "flag", "--measure",
+        "must be 'position', 'max_position' or 'energy', got '" + ClipInput(FLAGS_measure) + "'");
+  }
+  if (FLAGS_tune_cost != "seconds" && FLAGS_tune_cost != "iterations") {
+    throw InputError("flag", "--tune_cost",
+                     "must be 'seconds' or 'iterations', got '" + ClipInput(FLAGS_tune_cost) + "'");
+  }
+  const tune::Cost cost =
+      FLAGS_tune_cost == "iterations" ? tune::Cost::kIterations : tune::Cost::kSeconds;
+  const bool sharded = !FlagIsDefault("shard"), merging = !FlagIsDefault("merge");
+  if (sharded && merging) {
+    throw InputError("flag", "--merge",
+                     "give --shard (run one shard) or --merge (choose from the shards), not both");
+  }
+  int shard = 0, shards = 1;
+  if (sharded) {
+    ParseShard(FLAGS_shard, &shard, &shards);
+    if (FLAGS_tune_output.empty()) {
+      throw InputError("flag", "--shard",
+                       "a shard writes its runs to --tune_output=FILE for --merge: give it");
+    }
   }
   CheckFlagRange("budget_seconds", FLAGS_budget_seconds, 0.0, 1e6, "s", "", /*min_open=*/true);
   SimulationOptions base = SimulationOptionsFromFlags(registry);
@@ -147,9 +144,14 @@ int Run(const EffectRegistry& registry) {
     t_end = CheckFlagRange("at", FLAGS_at, 0.0, 1e7, "s", "", /*min_open=*/true);
   }
   if (!(t_end > 0.0)) throw InputError("flag", "--at", "the scene has no steps: give --at");
-  const std::vector<std::string> integrators = SplitList(FLAGS_tune_integrators);
-  const std::vector<std::string> optimizers = SplitList(FLAGS_tune_optimizers);
-  for (const std::string& name : integrators) {
+  tune::SearchSpace space;
+  space.integrators = SplitList(FLAGS_tune_integrators);
+  space.optimizers = SplitList(FLAGS_tune_optimizers);
+  if (space.families() == 0) {
+    throw InputError("flag", space.integrators.empty() ? "--tune_integrators" : "--tune_optimizers",
+                     "give at least one");
+  }
+  for (const std::string& name : space.integrators) {
     IntegratorOptions check = base.integrator;
     check.name = name;
     const MadeIntegrator integrator = MakeIntegrator(check);
@@ -158,193 +160,140 @@ int Run(const EffectRegistry& registry) {
                        "'" + ClipInput(name) + "': only dynamic variational integrators");
     }
   }
-  for (const std::string& name : optimizers) ParseOptimizer(name);
-  const bool position = FLAGS_measure == "position";
+  for (const std::string& name : space.optimizers) ParseOptimizer(name);
+  space.dt = dt;
+  space.t_end = t_end;
+  space.target = FLAGS_target_error;
+  space.default_tolerance = base.optimizer.tolerance;
+  const std::string search =
+      tune::SearchKey(FLAGS_scene, FLAGS_measure, FLAGS_match_default, space);
   // Opened before the search, so that a path that cannot be written is an
   // error now, not after it (io/output_file.h).
   std::unique_ptr<OutputFile> tune_output;
   if (!FLAGS_tune_output.empty()) {
     tune_output = std::make_unique<OutputFile>(FLAGS_tune_output, "flag: --tune_output");
   }
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&start] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  // The shards first: their errors before any run.
+  tune::MergedSearch merged;
+  if (merging) merged = tune::ReadShards(FLAGS_merge, search, &space);
+  const tune::Runner runner(scene, base, measure, t_end, FLAGS_budget_seconds);
 
-  // The reference: Newmark at dt / 64 (its own error from dt / 32).
+  // The reference: Newmark at dt / 64 (its own error from dt / 32), with the
+  // positions at kErrorCheckpoints times for max_position.
   ReferenceOptions reference_options;
   reference_options.optimizer.optimizer = Optimizer::kProjectedNewton;
   reference_options.optimizer.tolerance = 1e-8;
   reference_options.refinement = 64;
-  ReferenceSolution reference;
-  if (position) {
-    std::fprintf(stderr, "ipstep_tune: reference run ...\n");
-    reference = ComputeReference(scene, base, reference_options, dt, t_end);
-  }
-  // Runs `c` and measures its error (against `against` for --measure=position).
-  auto measure_against = [&](Candidate* c, const ReferenceSolution& against) {
-    SimulationOptions options = base;
-    options.integrator.name = c->integrator;
-    options.optimizer.optimizer = ParseOptimizer(c->optimizer);
-    options.optimizer.tolerance = c->tolerance;
-    RunOptions run_options;
-    if (c->adaptive) {
-      run_options.adaptive = true;
-      run_options.adaptive_options.error_tolerance = c->error_tolerance;
-      run_options.adaptive_options.t_end = t_end;
-      run_options.adaptive_options.initial_time_step = c->dt;
-      options.accept_residual = AdaptiveStallResidual(run_options.adaptive_options);
-      options.max_substeps = 1;
-      options.time_step = c->dt;
-    } else {
-      options.time_step = c->dt;
-      options.steps = static_cast<int>(std::llround(t_end / c->dt));
-    }
-    run_options.max_wall_seconds = std::max(1.0, FLAGS_budget_seconds - elapsed());
-    Simulation sim(scene, options);
-    const RunSummary run = RunTrajectory(sim, run_options);
-    c->seconds = run.wall_seconds;
-    c->steps = run.steps_done;
-    c->failed = run.failed;
-    c->iterations = run.iterations;
-    c->status = run.message;
-    if (run.termination != RunTermination::kCompleted || run.diverged()) return;
-    c->error = position ? MaxNodeDistance(sim.state().x, against.x, FreeNodes(sim.state()),
-                                          sim.state().dimension)
-                        : run.max_energy_drift;
+  reference_options.checkpoints = kErrorCheckpoints;
+  const std::string cache =
+      CacheFolder(sharded || merging, merging ? merged.first_file : FLAGS_tune_output);
+  auto get_reference = [&](const ReferenceOptions& options) {
+    std::fprintf(stderr, "ipstep_tune: reference (%s dt / %d) ...\n", options.integrator.c_str(),
+                 options.refinement);
+    bool computed = false;
+    ReferenceSolution r =
+        tune::SearchReference(scene, base, options, dt, t_end, cache, __FILE__, &computed);
+    if (!computed) std::fprintf(stderr, "ipstep_tune: reference read from %s\n", cache.c_str());
+    return r;
   };
+  const bool needs_reference = MeasureNeedsReference(measure);
+  ReferenceSolution reference;
+  if (needs_reference) reference = get_reference(reference_options);
+  const ReferenceSolution* against = needs_reference ? &reference : nullptr;
+  const double reference_error =
+      measure == ErrorMeasure::kMaxPosition ? reference.checkpoint_error : reference.error;
 
   // The default configuration at the scene's step, for comparison (and the
   // target, with --match_default).
-  Candidate fallback =
-      Fixed("backward_euler", "newton", t_end / std::max(1.0, std::round(t_end / dt)),
-            OptimizerOptions{}.tolerance);
-  fallback.role = "default";
-  measure_against(&fallback, reference);
-  double target = FLAGS_target_error;
-  if (FLAGS_match_default) {
-    if (!(fallback.error > 0.0)) {
-      std::printf("the default (backward_euler + newton at h = %g s) has no error to match (%s)\n",
-                  fallback.dt, fallback.status.c_str());
-      return 1;
+  Candidate fallback = merged.fallback;
+  if (!merging) {
+    fallback = tune::DefaultCandidate(dt, t_end);
+    runner.Measure(&fallback, against);
+    if (sharded) fallback.shard = FLAGS_shard;
+    if (FLAGS_match_default) {
+      if (!(fallback.error > 0.0)) {
+        std::printf(
+            "the default (backward_euler + newton at h = %g s) has no error to match (%s)\n",
+            fallback.dt, fallback.status.c_str());
+        return 1;
+      }
+      space.target = fallback.error;
     }
-    target = fallback.error;
   }
+  const double target = space.target;
   // What counts as within the target.
-  const double within = FLAGS_match_default ? target * (1.0 + kMatchSlack) : target;
-  std::printf(
-      "scene %s: error target %.3g %s%s at t = %g s (%s)\n", scene.name.c_str(), target,
-      position ? "m" : "energy scales", FLAGS_match_default ? " (the default's error)" : "", t_end,
-      position ? ("reference: " + reference.description).c_str() : "energy drift, no reference");
-  if (position && !reference.exact && reference.error > target / 3) {
+  space.within = FLAGS_match_default ? target * (1.0 + kMatchSlack) : target;
+  const double within = space.within;
+  std::printf("scene %s: error target %.3g %s%s%s at t = %g s (%s)\n", scene.name.c_str(), target,
+              ErrorMeasureUnit(measure), FLAGS_match_default ? " (the default's error)" : "",
+              measure == ErrorMeasure::kMaxPosition ? " over the run" : "", t_end,
+              needs_reference ? ("reference: " + reference.description).c_str()
+                              : "energy drift, no reference");
+  if (needs_reference && !reference.exact && reference_error > target / 3) {
     std::printf(
         "warning: the reference's own estimated error %.3g m is not far below the "
         "target\n",
-        reference.error);
+        reference_error);
   }
 
   std::vector<Candidate> runs;
-  const double tied_tolerance = 0.1 * target / t_end;
   bool out_of_time = false;
-  for (const std::string& integrator : integrators) {
-    for (const std::string& optimizer : optimizers) {
-      std::vector<Candidate> family;
-      for (double tolerance : {base.optimizer.tolerance, tied_tolerance}) {
-        // A tied tolerance equal to the default would repeat the same runs.
-        if (tolerance == tied_tolerance && tied_tolerance == base.optimizer.tolerance &&
-            !family.empty()) {
-          break;
-        }
-        for (double factor : kStepFactors) {
-          Candidate c = Fixed(integrator, optimizer,
-                              t_end / std::max(1.0, std::round(t_end / (dt * factor))), tolerance);
-          family.push_back(c);
-        }
-      }
-      for (double share : {1.0, 1.0 / 3.0, 0.1}) {
-        Candidate c = Fixed(integrator, optimizer, dt, 0.0);
-        c.adaptive = true;
-        c.error_tolerance = target * share;
-        c.tolerance = 0.1 * c.error_tolerance / t_end;
-        family.push_back(c);
-      }
-      // Coarse to fine within each sequence (5 fixed h per solver tolerance,
-      // then 3 adaptive); stop a sequence at its first run within the target.
-      std::vector<size_t> starts;
-      for (size_t begin = 0; begin + 3 < family.size(); begin += std::size(kStepFactors)) {
-        starts.push_back(begin);
-      }
-      starts.push_back(family.size() - 3);
-      for (size_t s = 0; s < starts.size(); ++s) {
-        const size_t end = s + 1 < starts.size() ? starts[s + 1] : family.size();
-        for (size_t k = starts[s]; k < end; ++k) {
-          if (elapsed() > FLAGS_budget_seconds) {
-            out_of_time = true;
-            break;
-          }
-          Candidate c = family[k];
-          measure_against(&c, reference);
-          std::fprintf(stderr, "ipstep_tune: %s: error %.3g, %.3f s, %d steps%s\n",
-                       Label(c).c_str(), c.error, c.seconds, c.steps,
-                       std::isnan(c.error) ? (" (" + c.status + ")").c_str() : "");
-          runs.push_back(c);
-          if (c.error <= within) break;
-        }
-      }
+  if (merging) {
+    runs = merged.runs;
+    out_of_time = merged.out_of_time;
+    std::printf("merged %zu runs of %d shards (%zu files)\n", runs.size(), merged.shards,
+                merged.files);
+  } else {
+    out_of_time = !tune::Search(space, runner, against, shard, shards, &runs);
+    if (sharded) {
+      for (Candidate& c : runs) c.shard = FLAGS_shard;
     }
+  }
+  const tune::SearchRecord record{search, target, out_of_time};
+  if (sharded) {
+    std::vector<Candidate> rows = runs;
+    rows.push_back(fallback);
+    tune::WriteRows(rows, record, tune_output.get());
+    std::printf("shard %s: %zu runs of families", FLAGS_shard.c_str(), runs.size());
+    for (int f = shard; f < space.families(); f += shards) std::printf(" %d", f);
+    std::printf(" of %d%s, written to %s\n", space.families(),
+                out_of_time ? " (the budget ran out)" : "", FLAGS_tune_output.c_str());
+    return 0;
   }
   // Every run of the search, the default and the validation (when there is a pick).
   auto write_runs = [&](const std::vector<Candidate>& rows) {
-    if (!tune_output) return;
-    std::ostream& out = tune_output->stream();
-    out.precision(10);
-    out << "integrator,optimizer,adaptive,dt,tolerance,error_tolerance,steps,failed,iterations,"
-           "seconds,error,role\n";
-    for (const Candidate& c : rows) {
-      out << c.integrator << ',' << c.optimizer << ',' << (c.adaptive ? 1 : 0) << ',' << c.dt << ','
-          << c.tolerance << ',' << c.error_tolerance << ',' << c.steps << ',' << c.failed << ','
-          << c.iterations << ',' << c.seconds << ',' << c.error << ',' << c.role << '\n';
-      tune_output->EndRow();
-    }
-    tune_output->Close();
+    if (tune_output) tune::WriteRows(rows, record, tune_output.get());
   };
-  // The Pareto front: runs with an error, by cost, each more accurate than every cheaper one.
-  std::vector<size_t> measured;  // indices into runs
-  for (size_t k = 0; k < runs.size(); ++k) {
-    if (!std::isnan(runs[k].error) && runs[k].failed == 0) measured.push_back(k);
-  }
-  std::stable_sort(measured.begin(), measured.end(),
-                   [&runs](size_t a, size_t b) { return runs[a].seconds < runs[b].seconds; });
+  const std::vector<size_t> front = tune::ParetoFront(runs, cost);
   std::printf(
-      "\nPareto front (%zu runs measured%s):\n\n| configuration | steps | time [s] | "
-      "error |\n|---|---|---|---|\n",
-      runs.size(), out_of_time ? ", the budget ran out" : "");
-  double best_error = HUGE_VAL;
+      "\nPareto front (%zu runs measured%s, cost: %s):\n\n| configuration | steps | iterations | "
+      "time [s] | error |\n|---|---|---|---|---|\n",
+      runs.size(), out_of_time ? ", the budget ran out" : "", FLAGS_tune_cost.c_str());
   Candidate* winner = nullptr;
-  for (size_t k : measured) {
+  for (size_t k : front) {
     Candidate& c = runs[k];
-    if (c.error >= best_error) continue;
-    best_error = c.error;
-    std::printf("| %s | %d | %.3g | %.3g%s |\n", Label(c).c_str(), c.steps, c.seconds, c.error,
-                c.error <= within ? " (within target)" : "");
+    std::printf("| %s | %d | %ld | %.3g | %.3g%s |\n", tune::Label(c).c_str(), c.steps,
+                c.iterations, c.seconds, c.error, c.error <= within ? " (within target)" : "");
     if (winner == nullptr && c.error <= within) winner = &c;
   }
   if (winner == nullptr) {
-    std::printf("\nno run reached the target %g; the most accurate: %.3g\n", target, best_error);
+    std::printf("\nno run reached the target %g; the most accurate: %.3g\n", target,
+                front.empty() ? HUGE_VAL : runs[front.back()].error);
+    runs.push_back(fallback);
     write_runs(runs);
     return 0;
   }
   winner->role = "pick";
-  const size_t winner_index = static_cast<size_t>(winner - runs.data());
-  std::printf("\nrecommended (%.3g s, error %.3g):\n  %s\n", winner->seconds, winner->error,
-              CommandLine(FLAGS_scene, *winner, t_end).c_str());
+  const Candidate pick = *winner;
+  std::printf("\nrecommended (%.3g s, %ld iterations, error %.3g):\n  %s\n", pick.seconds,
+              pick.iterations, pick.error, tune::CommandLine(FLAGS_scene, pick, t_end).c_str());
   // The comparison with the default from a second, back-to-back run of each
   // (the fastest of each one's two runs: a shared machine slows runs at random).
-  Candidate pick_again = *winner, default_again = fallback;
+  Candidate pick_again = pick, default_again = fallback;
   pick_again.role = default_again.role = "timing";
-  measure_against(&pick_again, reference);
-  measure_against(&default_again, reference);
-  const double pick_seconds = std::min(winner->seconds, pick_again.seconds);
+  runner.Measure(&pick_again, against);
+  runner.Measure(&default_again, against);
+  const double pick_seconds = std::min(pick.seconds, pick_again.seconds);
   const double default_seconds = std::min(fallback.seconds, default_again.seconds);
   if (fallback.error <= within) {
     std::printf(
@@ -352,7 +301,7 @@ int Run(const EffectRegistry& registry) {
         "the recommended time (fastest of two runs each: %.3g s against %.3g s; iterations "
         "%ld against %ld)\n",
         fallback.dt, fallback.error, default_seconds, default_seconds / pick_seconds,
-        default_seconds, pick_seconds, fallback.iterations, winner->iterations);
+        default_seconds, pick_seconds, fallback.iterations, pick.iterations);
   } else {
     std::printf(
         "the default (backward_euler + newton at h = %g s) does not reach it: error "
@@ -361,13 +310,13 @@ int Run(const EffectRegistry& registry) {
   }
   runs.push_back(pick_again);
   runs.push_back(default_again);
-  if (position && !reference.exact) {
+  if (needs_reference && !reference.exact) {
     ReferenceOptions finer = reference_options;
     finer.refinement = 128;
-    const ReferenceSolution tight = ComputeReference(scene, base, finer, dt, t_end);
-    Candidate again = runs[winner_index];
+    const ReferenceSolution tight = get_reference(finer);
+    Candidate again = pick;
     again.role = "validation";
-    measure_against(&again, tight);
+    runner.Measure(&again, &tight);
     std::printf("validated against %s: error %.3g (%s the target)\n", tight.description.c_str(),
                 again.error, again.error <= within ? "within" : "NOT within");
     runs.push_back(again);
@@ -381,7 +330,8 @@ int Run(const EffectRegistry& registry) {
 
 int RunTune(int argc, char** argv, const EffectRegistry& registry) {
   return ProgramMain(argc, argv, ProgramName(argc, argv, "ipstep_tune").c_str(),
-                     "ipstep_tune --scene=NAME|FILE --target_error=E [--at=T --measure=...]",
+                     "ipstep_tune --scene=NAME|FILE --target_error=E [--at=T --measure=...] "
+                     "[--shard=i/N --tune_output=FILE | --merge=FILES]",
                      [&registry] { return Run(registry); });
 }
 

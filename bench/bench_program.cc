@@ -10,7 +10,8 @@
 // Exit codes: 0 success (failed runs are rows, not errors), 2 bad input (also an
 // --output that cannot be written), 3 a failed write of --output (a full disk).
 //
-// The shards (--shard, --output and --merge of shard files): bench/bench_shards.h.
+// The shards: --shard and --output (apps/shard_files.h), --merge of the shard
+// files (bench/bench_shards.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +31,7 @@
 
 #include "apps/command_line.h"
 #include "apps/program_main.h"
+#include "apps/shard_files.h"
 #include "bench/bench_program.h"
 #include "bench/bench_runner.h"
 #include "bench/bench_shards.h"
@@ -286,7 +288,7 @@ int Run(const EffectRegistry& registry) {
     }
     return 0;
   }
-  const std::unique_ptr<OutputFile> output = OpenOutput(FLAGS_output);
+  const std::unique_ptr<OutputFile> output = OpenOutputCreatingFolder(FLAGS_output, "output");
   output->stream() << CsvHeader() << '\n';
   output->Flush();
 

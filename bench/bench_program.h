@@ -2,7 +2,9 @@
 // RunCompare (apps/programs.h): a project that registers its own effects and
 // calls RunBench from main() gets the whole sweep program (docs/benchmarks.md)
 // for its scenes. Its flags --integrators and --optimizers share their names
-// with ipstep_compare's: call RunBench and RunCompare from different programs.
+// with ipstep_compare's, --shard, --merge and --reference_cache with
+// ipstep_tune's: call RunBench and RunCompare or RunTune from different
+// programs.
 #pragma once
 
 #include "energies/effect_registry.h"

@@ -1,17 +1,11 @@
 #include "bench/bench_runner.h"
-#include "bench/commit.h"
+#include "apps/commit.h"
 #include "sim/default_effects.h"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -20,22 +14,14 @@
 #include "core/parse_number.h"
 #include "core/scoped_timer.h"
 #include "energies/effect_registry.h"
+#include "io/csv_fields.h"
+#include "io/reference_file.h"
 #include "problems/scene_loader.h"
 #include "sim/run_trajectory.h"
 
 namespace ipstep {
 namespace bench {
 namespace {
-
-std::string Quote(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c == '\n' ? ' ' : c;
-  }
-  return quoted + "\"";
-}
 
 std::string Number(double value) {
   if (std::isnan(value)) return "";
@@ -49,61 +35,6 @@ double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-// The cache file of a reference key: FNV-1a of the key (the key itself is the
-// file's first line, checked on reading).
-std::string CacheFile(const std::string& directory, const std::string& key) {
-  uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
-  char name[40];
-  std::snprintf(name, sizeof(name), "ref_%016llx.txt", static_cast<unsigned long long>(hash));
-  return (std::filesystem::path(directory) / name).string();
-}
-
-bool ReadReference(const std::string& file, const std::string& key, ReferenceSolution* out) {
-  std::ifstream in(file);
-  std::string line;
-  if (!in || !std::getline(in, line) || line != key) return false;
-  int ok = 0, exact = 0;
-  long size = 0;
-  if (!(in >> ok >> exact >> out->dt >> out->error >> out->steps >> out->failed_steps >> size) ||
-      size < 0) {
-    return false;
-  }
-  std::getline(in, line);  // end of the numbers' line
-  if (!std::getline(in, out->description)) return false;
-  out->ok = ok != 0;
-  out->exact = exact != 0;
-  out->x.resize(size);
-  for (long i = 0; i < size; ++i) {
-    if (!(in >> out->x[i])) return false;
-  }
-  return true;
-}
-
-void WriteReference(const std::string& file, const std::string& key,
-                    const ReferenceSolution& reference) {
-  std::error_code error;
-  std::filesystem::create_directories(std::filesystem::path(file).parent_path(), error);
-  const std::string temporary = file + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary);
-    if (!out) return;  // no cache: the sweep goes on, the reference is in memory
-    out << key << '\n'
-        << (reference.ok ? 1 : 0) << ' ' << (reference.exact ? 1 : 0) << ' '
-        << std::setprecision(17) << reference.dt << ' ' << reference.error << ' ' << reference.steps
-        << ' ' << reference.failed_steps << ' ' << reference.x.size() << '\n'
-        << reference.description << '\n';
-    for (Eigen::Index i = 0; i < reference.x.size(); ++i) out << reference.x[i] << '\n';
-    out.close();
-    if (!out) {  // e.g. a full disk: no cache file rather than a truncated one
-      std::filesystem::remove(temporary, error);
-      return;
-    }
-  }
-  std::filesystem::rename(temporary, file, error);
-  if (error) std::filesystem::remove(temporary, error);
 }
 
 }  // namespace
@@ -183,33 +114,31 @@ const ReferenceSolution& ReferenceCache::Get(const std::string& scene, int grid_
   std::snprintf(key_text, sizeof(key_text), "%s|%d|%s|%.17g|%.17g|%s|%.17g|%s", scene.c_str(),
                 grid_size, method.c_str(), dt_min, t_end, optimizer_.c_str(), tolerance_,
                 IPSTEP_COMMIT);
-  const std::string file = directory_.empty() ? "" : CacheFile(directory_, key_text);
-  if (!file.empty()) {
-    ReferenceSolution stored;
-    if (ReadReference(file, key_text, &stored)) {
-      return cache_.emplace(key, std::move(stored)).first->second;
+  // Computed once by the shards that ask at once (io/reference_file.h).
+  ReferenceSolution reference = CachedReference(directory_, key_text, [&] {
+    ++computed_;
+    const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
+    SceneLoadOptions load;
+    load.grid_size = grid_size;
+    const EffectRegistry& effects = effects_ ? *effects_ : DefaultEffects();
+    load.extra_effects = effects.UserNames();
+    SimulationOptions base;
+    base.effects = &effects;
+    ReferenceOptions options;
+    options.integrator = method;
+    options.optimizer = spec.options;
+    ReferenceSolution computed;
+    try {
+      computed = ComputeReference(LoadScene(scene, load), base, options, dt_min, t_end);
+    } catch (const std::exception& e) {
+      computed.ok = false;
+      computed.description = std::string("FAILED: ") + e.what();
     }
-  }
-  ++computed_;
-  const OptimizerSpec spec = ParseOptimizerSpec(optimizer_, tolerance_);
-  SceneLoadOptions load;
-  load.grid_size = grid_size;
-  const EffectRegistry& effects = effects_ ? *effects_ : DefaultEffects();
-  load.extra_effects = effects.UserNames();
-  SimulationOptions base;
-  base.effects = &effects;
-  ReferenceOptions options;
-  options.integrator = method;
-  options.optimizer = spec.options;
-  ReferenceSolution reference;
-  try {
-    reference = ComputeReference(LoadScene(scene, load), base, options, dt_min, t_end);
-  } catch (const std::exception& e) {
-    reference.ok = false;
-    reference.description = std::string("FAILED: ") + e.what();
-  }
-  if (optimizer_.find('+') != std::string::npos) reference.description += " (" + optimizer_ + ")";
-  if (!file.empty()) WriteReference(file, key_text, reference);
+    if (optimizer_.find('+') != std::string::npos) {
+      computed.description += " (" + optimizer_ + ")";
+    }
+    return computed;
+  });
   return cache_.emplace(key, std::move(reference)).first->second;
 }
 
@@ -234,19 +163,19 @@ std::string CsvRow(const RunRow& row) {
   const bool diverged = t.status.rfind("diverged", 0) == 0;
   const bool pn = c.optimizer.rfind("projected_newton", 0) == 0;
   std::ostringstream out;
-  out << c.id << ',' << Quote(c.scene) << ',' << c.grid_size << ',' << t.nodes << ',' << t.free_dofs
-      << ',' << c.integrator << ',' << Quote(c.optimizer) << ',' << Number(c.dt) << ',' << c.steps
-      << ',' << Number(c.dt * c.steps) << ',' << Number(c.tolerance) << ',' << c.repeats << ','
-      << c.warmup << ',' << Number(median) << ',' << Number(min) << ','
+  out << c.id << ',' << CsvField(c.scene) << ',' << c.grid_size << ',' << t.nodes << ','
+      << t.free_dofs << ',' << c.integrator << ',' << CsvField(c.optimizer) << ',' << Number(c.dt)
+      << ',' << c.steps << ',' << Number(c.dt * c.steps) << ',' << Number(c.tolerance) << ','
+      << c.repeats << ',' << c.warmup << ',' << Number(median) << ',' << Number(min) << ','
       << Number(ran ? median / (c.dt * steps) : std::nan("")) << ','
       << Number(ran ? 1e3 * median / steps : std::nan("")) << ',' << Number(t.setup_seconds) << ','
       << Number(static_cast<double>(t.iterations) / steps) << ',' << t.max_step_iterations << ','
       << Number(static_cast<double>(t.evaluations) / steps) << ',' << t.failed_steps << ','
-      << Number(t.worst_residual) << ',' << t.steps_done << ',' << Quote(t.status) << ','
+      << Number(t.worst_residual) << ',' << t.steps_done << ',' << CsvField(t.status) << ','
       << Number(row.position_error) << ','
-      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ',' << Quote(row.reference)
-      << ',' << Number(row.reference_dt) << ',' << Number(row.reference_error) << ','
-      << Number(pn ? t.phases.hessian : std::nan("")) << ','
+      << Number(ran && !diverged ? t.max_energy_drift : std::nan("")) << ','
+      << CsvField(row.reference) << ',' << Number(row.reference_dt) << ','
+      << Number(row.reference_error) << ',' << Number(pn ? t.phases.hessian : std::nan("")) << ','
       << Number(pn ? t.phases.factorize : std::nan("")) << ','
       << Number(pn ? t.phases.line_search : std::nan("")) << ','
       << Number(pn ? t.phases.gradient : std::nan("")) << ',' << row.shard << ','

@@ -89,7 +89,8 @@ class ReferenceCache {
   // and reads it from there when another run of the same sweep (a shard, or a
   // later sweep of the same build) computed it: one file per key (scene, grid,
   // method, dt_min, t_end, optimiser, tolerance, commit), written to a
-  // temporary name and renamed, so shards on one host share them safely.
+  // temporary name and renamed, so shards on one host share them safely
+  // (io/reference_file.h; shards that need one at once compute it once).
   void set_directory(std::string directory) { directory_ = std::move(directory); }
   int computed() const { return computed_; }  // references computed (not read)
   const ReferenceSolution& Get(const std::string& scene, int grid_size,

@@ -1,20 +1,12 @@
-// The shards of an ipstep_bench sweep, for RunBench (bench/bench_program.cc;
-// not an interface of its own): --shard's i/N, the --output file a shard or
-// the merge writes, and --merge of the shards' CSV files into --output.
+// The merge of an ipstep_bench sweep's shards, for RunBench
+// (bench/bench_program.cc; not an interface of its own). --shard's i/N, the
+// --output file a shard writes and the reading of shard files back are the
+// programs' (apps/shard_files.h).
 #pragma once
-
-#include <memory>
-#include <string>
-
-#include "io/output_file.h"
 
 namespace ipstep {
 namespace bench {
 
-// --shard's "i/N": index i and count N; an InputError unless 0 <= i < N.
-void ParseShard(const std::string& text, int* index, int* count);
-// Opens --output for writing, creating its folder.
-std::unique_ptr<OutputFile> OpenOutput(const std::string& path);
 // --merge: the shard files (comma-separated files or glob patterns) merged
 // into --output, sorted by id; the exit code (0).
 int Merge();

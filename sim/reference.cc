@@ -6,6 +6,7 @@
 
 #include "core/input_error.h"
 #include "core/input_limits.h"
+#include "sim/checkpoint_recorder.h"
 #include "sim/run_trajectory.h"
 
 namespace ipstep {
@@ -24,10 +25,12 @@ double MaxNodeDistance(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
   if (x.size() != y.size() || x.size() == 0) return std::nan("");
   double worst = 0.0;
   for (int i : nodes) {
-    worst = std::max(
-        worst, (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm());
+    const double distance =
+        (x.segment(dimension * i, dimension) - y.segment(dimension * i, dimension)).norm();
+    if (!std::isfinite(distance)) return std::nan("");  // std::max would drop a NaN
+    worst = std::max(worst, distance);
   }
-  return std::isfinite(worst) ? worst : std::nan("");
+  return worst;
 }
 
 std::vector<int> FreeNodes(const State& state) {
@@ -45,9 +48,17 @@ std::string ReferenceIntegratorFor(const std::string& integrator) {
 ReferenceSolution ComputeReference(const Scene& scene, const SimulationOptions& base,
                                    const ReferenceOptions& reference, double dt_min, double t_end) {
   ReferenceSolution out;
+  if (reference.checkpoints < 0 || reference.checkpoints > 10000) {
+    throw InputError("options", "ReferenceOptions.checkpoints", "must be in [0, 10000]");
+  }
   if (reference.integrator != "quasi_static" && ExactPositions(scene, t_end, &out.x)) {
     out.exact = out.ok = true;
     out.description = "exact solution";
+    out.checkpoint_times = CheckpointTimes(0.0, t_end, reference.checkpoints);
+    for (double t : out.checkpoint_times) {
+      out.checkpoint_x.emplace_back();
+      ExactPositions(scene, t, &out.checkpoint_x.back());
+    }
     return out;
   }
   if (reference.refinement < 1 || reference.refinement > 1024) {
@@ -58,6 +69,7 @@ ReferenceSolution ComputeReference(const Scene& scene, const SimulationOptions& 
   options.optimizer = reference.optimizer;
   options.t_end = 0.0;  // the runs below set their steps
   Eigen::VectorXd x[2];
+  std::vector<Eigen::VectorXd> checkpoint_x[2];
   std::vector<int> free_nodes;
   int dimension = scene.dimension;
   bool ok = true;
@@ -74,9 +86,13 @@ ReferenceSolution ComputeReference(const Scene& scene, const SimulationOptions& 
     options.time_step = t_end / options.steps;
     Simulation sim(scene, options);
     RunOptions run_options;
+    CheckpointRecorder recorder(CheckpointTimes(sim.state().time, t_end, reference.checkpoints));
+    recorder.Attach(sim, &run_options);
     const RunSummary run = RunTrajectory(sim, run_options);
     x[r] = sim.state().x;
+    checkpoint_x[r] = recorder.positions();
     if (r == 0) {
+      out.checkpoint_times = recorder.times();
       out.dt = options.time_step;
       out.steps = run.steps_done;
       out.failed_steps = run.failed;
@@ -96,6 +112,23 @@ ReferenceSolution ComputeReference(const Scene& scene, const SimulationOptions& 
   out.x = x[0];
   out.ok = ok;
   out.error = MaxNodeDistance(x[0], x[1], free_nodes, dimension) / (std::pow(2.0, order) - 1.0);
+  // The checkpoints' error estimate as the end's. A run that stopped early
+  // has fewer checkpoints: the missing ones are NaN, and so is the estimate.
+  for (size_t j = 0; j < out.checkpoint_times.size(); ++j) {
+    const bool both = j < checkpoint_x[0].size() && j < checkpoint_x[1].size();
+    out.checkpoint_x.push_back(j < checkpoint_x[0].size()
+                                   ? checkpoint_x[0][j]
+                                   : Eigen::VectorXd::Constant(x[0].size(), std::nan("")));
+    const double e =
+        both ? MaxNodeDistance(checkpoint_x[0][j], checkpoint_x[1][j], free_nodes, dimension) /
+                   (std::pow(2.0, order) - 1.0)
+             : std::nan("");
+    if (std::isnan(e) || std::isnan(out.checkpoint_error)) {
+      out.checkpoint_error = std::nan("");
+    } else {
+      out.checkpoint_error = std::max(out.checkpoint_error, e);
+    }
+  }
   char text[200];
   std::snprintf(text, sizeof(text), "%s%s dt=%.4g tol=%g %s", reference.integrator.c_str(),
                 reference.integrator == "newmark" ? "(1/4,1/2)" : "", out.dt,

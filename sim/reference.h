@@ -1,5 +1,6 @@
 // Reference solutions and the error measures taken against them: what
-// ipstep_compare and ipstep_bench call "position error".
+// ipstep_compare and ipstep_bench call "position error" (every measure:
+// sim/error_measure.h).
 //
 // Where the exact solution is known (the built-in oscillator: x = 1 + 0.1 cos t)
 // it is the reference. Otherwise the reference is a fine run of the scene: the
@@ -39,6 +40,10 @@ struct ReferenceOptions {
   OptimizerOptions optimizer;
   // dt_ref = dt_min / refinement; the error estimate runs at 2 dt_ref.
   int refinement = 16;
+  // Also the positions at K = `checkpoints` times t_end j / K, j = 1 .. K
+  // (sim/checkpoint_recorder.h), for the max_position measure
+  // (sim/error_measure.h); in [0, 10000], 0: none.
+  int checkpoints = 0;
 };
 std::string ReferenceIntegratorFor(const std::string& integrator);
 
@@ -51,11 +56,17 @@ struct ReferenceSolution {
   int failed_steps = 0;  // of the fine run
   int steps = 0;         // of the fine run
   std::string description;
+  // With ReferenceOptions::checkpoints: their times [s] (the last is t_end),
+  // the positions there, and the estimated own error, the largest over them [m].
+  std::vector<double> checkpoint_times;
+  std::vector<Eigen::VectorXd> checkpoint_x;
+  double checkpoint_error = 0.0;
 };
 
-// The reference at t_end for runs of `scene` with time steps >= dt_min:
-// `base` gives the effects and their overrides, the energy check and the
-// substeps; its integrator, optimiser and step are replaced by `reference`'s.
+// The reference at t_end (and at its checkpoints) for runs of `scene` with
+// time steps >= dt_min: `base` gives the effects and their overrides, the
+// energy check and the substeps; its integrator, optimiser and step are
+// replaced by `reference`'s.
 // Throws InputError for invalid options (as Simulation does).
 ReferenceSolution ComputeReference(const Scene& scene, const SimulationOptions& base,
                                    const ReferenceOptions& reference, double dt_min, double t_end);

@@ -706,13 +706,13 @@ TEST_F(ProgramInput, TuneOutputMarksThePickTheDefaultAndTheirSecondRuns) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "integrator,optimizer,adaptive,dt,tolerance,error_tolerance,steps,failed,iterations,"
-            "seconds,error,role");
+            "seconds,error,role,family,position,shard,target,out_of_time,search");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> fields;
     std::stringstream split(line);
     for (std::string field; std::getline(split, field, ',');) fields.push_back(field);
-    ASSERT_EQ(fields.size(), 12u) << line;
+    ASSERT_EQ(fields.size(), 18u) << line;
     rows.push_back(fields);
   }
   ASSERT_GE(rows.size(), 4u);
