@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gflags/gflags.h>
@@ -276,6 +278,20 @@ std::string FlagOrigin(const std::string& name) {
 bool FlagIsDefault(const char* name) {
   gflags::CommandLineFlagInfo info;
   return !gflags::GetCommandLineFlagInfo(name, &info) || info.is_default;
+}
+
+std::vector<std::pair<std::string, std::string>> GivenFlags(const std::string& except_file) {
+  static const std::set<std::string> logging = {
+      "v",       "vmodule",  "minloglevel", "logtostderr", "alsologtostderr", "stderrthreshold",
+      "log_dir", "flagfile", "fromenv",     "tryfromenv"};
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  std::vector<std::pair<std::string, std::string>> given;
+  for (const gflags::CommandLineFlagInfo& flag : flags) {
+    if (flag.is_default || flag.filename == except_file || logging.count(flag.name)) continue;
+    given.emplace_back(flag.name, flag.current_value);
+  }
+  return given;
 }
 
 std::vector<std::string> SplitList(const std::string& text) {

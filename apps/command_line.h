@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ipstep {
@@ -36,6 +37,12 @@ double CheckFlagRange(const char* name, double value, double min, double max,
                       const std::string& unit, const std::string& when_omitted,
                       bool min_open = false);
 int CheckFlagRange(const char* name, int value, int min, int max, const std::string& when_omitted);
+
+// The flags given on the command line (not at their defaults), as
+// (name, value), in gflags' order, except those defined in the source file
+// `except_file` (a program's own flags: __FILE__) and the logging flags
+// (v, vmodule, minloglevel, ...): what else a run of the same scene needs.
+std::vector<std::pair<std::string, std::string>> GivenFlags(const std::string& except_file);
 
 // The non-empty items of a comma-separated flag value ("a,b,,c" -> a, b, c).
 std::vector<std::string> SplitList(const std::string& text);

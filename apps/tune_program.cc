@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gflags/gflags.h>
@@ -41,6 +42,7 @@
 #include "core/input_error.h"
 #include "io/output_file.h"
 #include "problems/scene_loader.h"
+#include "sim/contact_kappa_pin.h"
 #include "sim/error_measure.h"
 #include "sim/reference.h"
 
@@ -98,6 +100,18 @@ std::string CacheFolder(bool sharded, const std::string& beside) {
   if (!FLAGS_reference_cache.empty()) return FLAGS_reference_cache;
   if (!sharded) return "";
   return (std::filesystem::path(beside).parent_path() / "references").string();
+}
+
+// The flags the recommended command line carries beside the pick's own: the
+// scene's and the runs' flags given here, and a pinned contact stiffness.
+std::vector<std::pair<std::string, std::string>> RecommendedFlags(double pinned_kappa) {
+  std::vector<std::pair<std::string, std::string>> flags = GivenFlags(__FILE__);
+  if (pinned_kappa > 0.0) {
+    char value[40];
+    std::snprintf(value, sizeof(value), "%.17g", pinned_kappa);
+    flags.emplace_back("contact_kappa", value);
+  }
+  return flags;
 }
 
 int Run(const EffectRegistry& registry) {
@@ -165,6 +179,21 @@ int Run(const EffectRegistry& registry) {
   space.t_end = t_end;
   space.target = FLAGS_target_error;
   space.default_tolerance = base.optimizer.tolerance;
+  // A contact scene whose kappa adapts to the step would compare barriers,
+  // not configurations: every run and the reference get one kappa, the one
+  // the default configuration ends with (sim/contact_kappa_pin.h).
+  double pinned_kappa = 0.0;
+  {
+    const Candidate d = tune::DefaultCandidate(dt, t_end);
+    SimulationOptions pin = base;
+    pin.integrator.name = d.integrator;
+    pin.optimizer.optimizer = ParseOptimizer(d.optimizer);
+    pin.optimizer.tolerance = d.tolerance;
+    pin.time_step = d.dt;
+    pin.steps = static_cast<int>(std::llround(t_end / d.dt));
+    pinned_kappa = PinAdaptiveContactKappa(scene, &pin);
+    if (pinned_kappa > 0.0) base.effect_overrides = pin.effect_overrides;
+  }
   const std::string search =
       tune::SearchKey(FLAGS_scene, FLAGS_measure, FLAGS_match_default, space);
   // Opened before the search, so that a path that cannot be written is an
@@ -229,6 +258,12 @@ int Run(const EffectRegistry& registry) {
               measure == ErrorMeasure::kMaxPosition ? " over the run" : "", t_end,
               needs_reference ? ("reference: " + reference.description).c_str()
                               : "energy drift, no reference");
+  if (pinned_kappa > 0.0) {
+    std::printf(
+        "contact: kappa adapts to the step, so every run and the reference use kappa = %.6g, "
+        "the one the default configuration ends with (--contact_kappa chooses it)\n",
+        pinned_kappa);
+  }
   if (needs_reference && !reference.exact && reference_error > target / 3) {
     std::printf(
         "warning: the reference's own estimated error %.3g m is not far below the "
@@ -286,7 +321,8 @@ int Run(const EffectRegistry& registry) {
   winner->role = "pick";
   const Candidate pick = *winner;
   std::printf("\nrecommended (%.3g s, %ld iterations, error %.3g):\n  %s\n", pick.seconds,
-              pick.iterations, pick.error, tune::CommandLine(FLAGS_scene, pick, t_end).c_str());
+              pick.iterations, pick.error,
+              tune::CommandLine(FLAGS_scene, pick, t_end, RecommendedFlags(pinned_kappa)).c_str());
   // The comparison with the default from a second, back-to-back run of each
   // (the fastest of each one's two runs: a shared machine slows runs at random).
   Candidate pick_again = pick, default_again = fallback;

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "sim/run_trajectory.h"
 #include "sim/step_size_controller.h"
@@ -43,7 +47,8 @@ Candidate DefaultCandidate(double dt, double t_end) {
   return c;
 }
 
-std::string CommandLine(const std::string& scene, const Candidate& c, double t_end) {
+std::string CommandLine(const std::string& scene, const Candidate& c, double t_end,
+                        const std::vector<std::pair<std::string, std::string>>& extra) {
   char text[400];
   if (c.adaptive) {
     std::snprintf(text, sizeof(text),
@@ -58,7 +63,22 @@ std::string CommandLine(const std::string& scene, const Candidate& c, double t_e
                   scene.c_str(), c.integrator.c_str(), c.optimizer.c_str(), c.dt, t_end,
                   c.tolerance);
   }
-  return text;
+  static const std::set<std::string> own = {
+      "scene",  "integrator", "optimizer",         "dt",
+      "t_end",  "tolerance",  "adaptive",          "error_tolerance",
+      "min_dt", "max_dt",     "filter_stiff_modes"};
+  std::string line = text;
+  for (const auto& [name, value] : extra) {
+    if (own.count(name) || (c.adaptive && name == "max_substeps")) continue;
+    // Shell-quoted unless plain (paths with spaces, lists with brackets).
+    const bool plain = !value.empty() && value.find_first_not_of(
+                                             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVW"
+                                             "XYZ0123456789._/:,+-=") == std::string::npos;
+    std::string quoted = "'";
+    for (char ch : value) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    line += " --" + name + "=" + (plain ? value : quoted + "'");
+  }
+  return line;
 }
 
 std::string Label(const Candidate& c) {

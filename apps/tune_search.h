@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "problems/scene.h"
@@ -46,8 +47,13 @@ double CostOf(const Candidate& c, Cost cost);
 // (adjusted to end on t_end) with the default solver tolerance.
 Candidate DefaultCandidate(double dt, double t_end);
 
-// The ipstep command line that runs `c` to t_end.
-std::string CommandLine(const std::string& scene, const Candidate& c, double t_end);
+// The ipstep command line that runs `c` to t_end, with `extra` flags (name,
+// value) appended: what else the search's runs had (--grid_size, a pinned
+// --contact_kappa, ...). Those the line sets itself (scene, integrator,
+// optimizer, dt, t_end, tolerance and the adaptive ones) are skipped, and
+// --max_substeps for an adaptive run, which refuses it.
+std::string CommandLine(const std::string& scene, const Candidate& c, double t_end,
+                        const std::vector<std::pair<std::string, std::string>>& extra = {});
 // "newmark + newton, h = 0.01 s, tolerance 1e-05 m/s" / "..., adaptive E = 0.001 m".
 std::string Label(const Candidate& c);
 

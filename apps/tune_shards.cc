@@ -5,11 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <set>
 #include <utility>
 
-#include <gflags/gflags.h>
-
+#include "apps/command_line.h"
 #include "apps/commit.h"
 #include "apps/shard_files.h"
 #include "core/input_error.h"
@@ -251,16 +249,11 @@ ReferenceSolution SearchReference(const Scene& scene, const SimulationOptions& b
   }
   // Every flag given that may change the scene or its runs (the search's own
   // flags and the logging's do not).
-  const std::set<std::string> logging = {
-      "v",       "vmodule",  "minloglevel", "logtostderr", "alsologtostderr", "stderrthreshold",
-      "log_dir", "flagfile", "fromenv",     "tryfromenv"};
-  std::vector<gflags::CommandLineFlagInfo> flags;
-  gflags::GetAllFlags(&flags);
   std::string given;
-  for (const gflags::CommandLineFlagInfo& flag : flags) {
-    if (flag.is_default || flag.filename == own_flags_file || logging.count(flag.name)) continue;
-    given += " --" + flag.name + "=" + flag.current_value;
-  }
+  for (const auto& [name, value] : GivenFlags(own_flags_file)) given += " --" + name + "=" + value;
+  // And what the flags do not say: a pinned contact stiffness
+  // (sim/contact_kappa_pin.h).
+  for (const auto& [effect, values] : base.effect_overrides) given += " " + effect + values.dump();
   const std::string key =
       "ipstep_tune reference|" + scene.name + "|" + given + "|" + options.integrator + "|" +
       OptimizerName(options.optimizer.optimizer) + "|" + Number17(options.optimizer.tolerance) +

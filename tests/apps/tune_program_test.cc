@@ -2,8 +2,12 @@
 // n shards merged pick what the unsharded search picks (with iterations as
 // the cost, the pick does not depend on timing); a missing or duplicated
 // shard, a shard of another search and bad shard flags are exit code 2 with
-// one line naming the flag and the shard. Timings are never checked.
+// one line naming the flag and the shard. The recommended command line runs
+// as printed: it carries the flags the search's runs had and, on a contact
+// scene whose kappa adapts to the step, the kappa every run was pinned to.
+// Timings are never checked.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -154,6 +158,62 @@ TEST_F(TuneProgram, MaxPositionMeasuresTheWholeRun) {
   EXPECT_EQ(header.rfind("integrator,optimizer,adaptive,dt,tolerance,error_tolerance,steps,", 0),
             0u)
       << header;
+}
+
+}  // namespace
+
+namespace {
+
+// The first line of `output` that starts with `prefix` ("" if none).
+std::string LineStartingWith(const std::string& output, const std::string& prefix) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) == 0) return line;
+  }
+  return "";
+}
+
+// The built-in drop (kappa fixed at 1e5) and the same scene without its
+// kappa, whose barrier then adapts to each run's step: the search pins it
+// for every run and the reference, says so, and the recommended command
+// carries it with the flags given (--energy_tolerance); with kappa fixed
+// nothing is pinned. Both recommended lines run as printed.
+TEST_F(TuneProgram, TheRecommendedCommandCarriesTheFlagsGivenAndAPinnedContactStiffness) {
+  std::ifstream drop(std::string(IPSTEP_SOURCE_DIR) + "/problems/drop.json");
+  ASSERT_TRUE(drop.good());
+  std::ostringstream adaptive;
+  for (std::string line; std::getline(drop, line);) {
+    if (line.find("\"kappa\"") == std::string::npos) adaptive << line << "\n";
+  }
+  const std::string scene = (dir_ / "drop_adaptive_kappa.json").string();
+  std::ofstream(scene) << adaptive.str();
+  const std::string search =
+      " --target_error=3e-2 --at=0.5 --tune_integrators=newmark "
+      "--tune_optimizers=projected_newton --tune_cost=iterations --energy_tolerance=0.2";
+  for (const std::string& name : {std::string("drop"), scene}) {
+    const bool pinned = name == scene;
+    const Outcome o = Tune("--scene=" + name + search);
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    const std::string note = LineStartingWith(o.output, "contact: kappa adapts to the step");
+    const std::string command = LineStartingWith(o.output, "  ipstep ");
+    ASSERT_FALSE(command.empty()) << o.output;
+    EXPECT_NE(command.find(" --energy_tolerance=0.2"), std::string::npos) << command;
+    EXPECT_EQ(command.find("--target_error"), std::string::npos) << command;
+    EXPECT_EQ(!note.empty(), pinned) << o.output;
+    const size_t kappa = command.find(" --contact_kappa=");
+    EXPECT_EQ(kappa != std::string::npos, pinned) << command;
+    if (pinned && kappa != std::string::npos) {
+      // The kappa of the note, to the digits it prints.
+      const double value = std::stod(command.substr(kappa + 17));
+      EXPECT_GT(value, 0.0);
+      char shown[40];
+      std::snprintf(shown, sizeof(shown), "kappa = %.6g,", value);
+      EXPECT_NE(note.find(shown), std::string::npos) << note << "\n" << command;
+    }
+    const Outcome run = ipstep::testing::RunProgram(
+        IPSTEP_BINARY, command.substr(command.find("--scene=")), "2>/dev/null");
+    EXPECT_EQ(run.exit_code, 0) << command << "\n" << run.output;
+  }
 }
 
 }  // namespace
