@@ -1,7 +1,8 @@
 // Error-controlled time steps (RunOptions::adaptive, sim/step_size_controller.h):
 // the global error follows the requested tolerance, the cost grows as the
-// integrator's order predicts, and a contact scene takes large steps in
-// flight and small ones at the impact without a failed step.
+// integrator's order predicts, and the contact scenes (drop, squash_square,
+// cloth_sphere) take large steps in flight and small ones at the impact
+// without a failed step.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -30,14 +31,14 @@ struct AdaptiveRun {
 // An adaptive run of `scene` to t_end with the solver tolerance tied to the
 // error budget, as ipstep --adaptive sets it.
 AdaptiveRun RunAdaptive(const Scene& scene, const std::string& integrator, double tolerance,
-                        double t_end, double first_dt) {
+                        double t_end, double first_dt, const std::string& optimizer = "newton") {
   RunOptions options;
   options.adaptive = true;
   options.adaptive_options.error_tolerance = tolerance;
   options.adaptive_options.t_end = t_end;
   options.adaptive_options.initial_time_step = first_dt;
   SimulationOptions sim_options =
-      Options(integrator, "newton", first_dt, AdaptiveSolverTolerance(options.adaptive_options));
+      Options(integrator, optimizer, first_dt, AdaptiveSolverTolerance(options.adaptive_options));
   sim_options.accept_residual = AdaptiveStallResidual(options.adaptive_options);
   Simulation sim(scene, sim_options);
   AdaptiveRun out;
@@ -117,6 +118,40 @@ TEST(AdaptiveStepping, DropTakesLargeStepsInFlightAndSmallOnesAtTheImpact) {
   EXPECT_GE(flight, 0.05);
   EXPECT_LE(impact, 1e-3);
   EXPECT_GT(r.run.rejected, 0);
+}
+
+// Two more contact scenes, with Newmark x projected_newton
+// at E = 1 cm: `squash_square` (a neo-Hookean square on the ground, a ceiling
+// descending at 0.5 m/s reaches it at t = 0.19 s; friction on both) steps at
+// about 0.01 s before the ceiling touches and at a third of that when it does;
+// `cloth_sphere` (a 10 x 10 node cloth falling onto a sphere from rest) takes steps
+// of several centiseconds in free fall and of a millisecond or less once it
+// lies on the sphere. No step fails in either.
+TEST(AdaptiveStepping, SquashAndClothTakeLargeStepsBeforeContactAndSmallOnesIn) {
+  SceneLoadOptions load;
+  load.extra_effects = DefaultEffects().UserNames();
+  struct Case {
+    const char* scene;
+    double t_end, contact_starts, contact_ends, flight_at_least, contact_at_most;
+  };
+  for (const Case& c : {Case{"squash_square", 0.3, 0.19, 0.25, 6e-3, 4e-3},
+                        Case{"cloth_sphere", 0.3, 0.17, 0.3, 2.5e-2, 3e-3}}) {
+    const Scene scene = LoadScene(c.scene, load);
+    const AdaptiveRun r =
+        RunAdaptive(scene, "newmark", 1e-2, c.t_end, scene.time_step, "projected_newton");
+    ASSERT_EQ(r.run.termination, RunTermination::kCompleted) << c.scene << ": " << r.run.message;
+    EXPECT_EQ(r.run.failed, 0) << c.scene;
+    double flight = 0.0, contact = 1.0;
+    for (const StepReport& s : r.steps) {
+      EXPECT_TRUE(s.converged) << c.scene << " at t = " << s.time << ": " << s.status;
+      if (s.time < c.contact_starts - 0.01) flight = std::max(flight, s.time_step);
+      if (s.time > c.contact_starts && s.time < c.contact_ends) {
+        contact = std::min(contact, s.time_step);
+      }
+    }
+    EXPECT_GE(flight, c.flight_at_least) << c.scene;
+    EXPECT_LE(contact, c.contact_at_most) << c.scene;
+  }
 }
 
 // The run reports the barrier stiffness it ended with. An adaptive kappa
