@@ -6,6 +6,7 @@
 namespace ipstep {
 
 double PinAdaptiveContactKappa(const Scene& scene, SimulationOptions* options) {
+  if (!scene.HasEffect("contact")) return 0.0;  // (no simulation to build)
   Simulation sim(scene, *options);
   const ContactEffect* contact = sim.FindEffect<ContactEffect>();
   if (contact == nullptr || !contact->state().adaptive_kappa()) return 0.0;
