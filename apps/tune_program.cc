@@ -184,13 +184,9 @@ int Run(const EffectRegistry& registry) {
   // the default configuration ends with (sim/contact_kappa_pin.h).
   double pinned_kappa = 0.0;
   {
-    const Candidate d = tune::DefaultCandidate(dt, t_end);
-    SimulationOptions pin = base;
-    pin.integrator.name = d.integrator;
-    pin.optimizer.optimizer = ParseOptimizer(d.optimizer);
-    pin.optimizer.tolerance = d.tolerance;
-    pin.time_step = d.dt;
-    pin.steps = static_cast<int>(std::llround(t_end / d.dt));
+    RunOptions unused;
+    SimulationOptions pin =
+        tune::CandidateOptions(base, tune::DefaultCandidate(dt, t_end), t_end, &unused);
     pinned_kappa = PinAdaptiveContactKappa(scene, &pin);
     if (pinned_kappa > 0.0) base.effect_overrides = pin.effect_overrides;
   }

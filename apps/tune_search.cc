@@ -137,23 +137,29 @@ double Runner::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-void Runner::Measure(Candidate* c, const ReferenceSolution* against) const {
-  SimulationOptions options = base_;
-  options.integrator.name = c->integrator;
-  options.optimizer.optimizer = ParseOptimizer(c->optimizer);
-  options.optimizer.tolerance = c->tolerance;
-  options.time_step = c->dt;
-  RunOptions run_options;
-  if (c->adaptive) {
-    run_options.adaptive = true;
-    run_options.adaptive_options.error_tolerance = c->error_tolerance;
-    run_options.adaptive_options.t_end = t_end_;
-    run_options.adaptive_options.initial_time_step = c->dt;
-    options.accept_residual = AdaptiveStallResidual(run_options.adaptive_options);
+SimulationOptions CandidateOptions(const SimulationOptions& base, const Candidate& c, double t_end,
+                                   RunOptions* run) {
+  SimulationOptions options = base;
+  options.integrator.name = c.integrator;
+  options.optimizer.optimizer = ParseOptimizer(c.optimizer);
+  options.optimizer.tolerance = c.tolerance;
+  options.time_step = c.dt;
+  if (c.adaptive) {
+    run->adaptive = true;
+    run->adaptive_options.error_tolerance = c.error_tolerance;
+    run->adaptive_options.t_end = t_end;
+    run->adaptive_options.initial_time_step = c.dt;
+    options.accept_residual = AdaptiveStallResidual(run->adaptive_options);
     options.max_substeps = 1;
   } else {
-    options.steps = static_cast<int>(std::llround(t_end_ / c->dt));
+    options.steps = static_cast<int>(std::llround(t_end / c.dt));
   }
+  return options;
+}
+
+void Runner::Measure(Candidate* c, const ReferenceSolution* against) const {
+  RunOptions run_options;
+  const SimulationOptions options = CandidateOptions(base_, *c, t_end_, &run_options);
   run_options.max_wall_seconds = std::max(1.0, budget_seconds_ - elapsed());
   Simulation sim(scene_, options);
   const MeasuredRun measured = RunMeasured(sim, run_options, measure_, against);

@@ -11,6 +11,7 @@
 #include "problems/scene.h"
 #include "sim/error_measure.h"
 #include "sim/reference.h"
+#include "sim/run_trajectory.h"
 #include "sim/simulation.h"
 
 namespace ipstep {
@@ -76,6 +77,12 @@ struct SearchSpace {
 };
 
 // Runs candidates of one scene and measures their errors.
+// The simulation and run options of `c` on `base` to t_end (its integrator,
+// optimiser, tolerance and step; an adaptive one's controller, as --adaptive
+// sets it); `run`'s wall-time limit is left to the caller.
+SimulationOptions CandidateOptions(const SimulationOptions& base, const Candidate& c, double t_end,
+                                   RunOptions* run);
+
 class Runner {
  public:
   Runner(const Scene& scene, const SimulationOptions& base, ErrorMeasure measure, double t_end,
